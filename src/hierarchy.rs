@@ -1,0 +1,97 @@
+//! The parent map between rigid bodies, chains, and the cycle check (seed 3.C).
+
+use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
+
+use crate::node::HandleMap;
+use crate::{Node, RuleError};
+
+/// The crate's own parent map between rigid bodies. Invariant: it has no
+/// cycle (every `set` checks), so walking up always ends.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Hierarchy {
+    parents: HandleMap<RigidBodyHandle, RigidBodyHandle>,
+}
+
+impl Hierarchy {
+    #[inline]
+    pub(crate) fn parent(&self, child: RigidBodyHandle) -> Option<RigidBodyHandle> {
+        self.parents.get(child).copied()
+    }
+
+    pub(crate) fn set_parent(
+        &mut self,
+        child: RigidBodyHandle,
+        parent: RigidBodyHandle,
+    ) -> Result<(), RuleError> {
+        if child == parent {
+            return Err(RuleError::SelfParent { body: child });
+        }
+        if self.parents.is_superseded(child) {
+            return Err(RuleError::Removed {
+                node: Node::Body(child),
+            });
+        }
+        if self.is_ancestor_or_self(child, parent) {
+            return Err(RuleError::Cycle { child, parent });
+        }
+        self.parents.insert(child, parent);
+        Ok(())
+    }
+
+    pub(crate) fn remove_parent(&mut self, child: RigidBodyHandle) -> Option<RigidBodyHandle> {
+        self.parents.remove(child)
+    }
+
+    /// Removes every link that names `body`: its own, and its children's
+    /// (they become roots).
+    pub(crate) fn forget(&mut self, body: RigidBodyHandle) {
+        self.parents.remove(body);
+        self.parents.retain(|_, parent| *parent != body);
+    }
+
+    /// Whether `ancestor` is `body` or lies above it.
+    pub(crate) fn is_ancestor_or_self(
+        &self,
+        ancestor: RigidBodyHandle,
+        body: RigidBodyHandle,
+    ) -> bool {
+        let mut current = Some(body);
+        while let Some(b) = current {
+            if b == ancestor {
+                return true;
+            }
+            current = self.parent(b);
+        }
+        false
+    }
+
+    /// Every link, child first.
+    pub(crate) fn links(&self) -> impl Iterator<Item = (RigidBodyHandle, RigidBodyHandle)> + '_ {
+        self.parents.iter().map(|(child, parent)| (child, *parent))
+    }
+
+    /// The bodies below `root` in the parent map (not `root` itself).
+    pub(crate) fn descendants(&self, root: RigidBodyHandle) -> Vec<RigidBodyHandle> {
+        self.parents
+            .iter()
+            .map(|(child, _)| child)
+            .filter(|&child| child != root && self.is_ancestor_or_self(root, child))
+            .collect()
+    }
+
+    /// The node above `node` in its chain: a collider's body, or a body's
+    /// parent. Handles missing from the Rapier sets end the chain.
+    #[inline]
+    pub(crate) fn next(
+        &self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        node: Node,
+    ) -> Option<Node> {
+        let body = match node {
+            Node::Collider(handle) => colliders.get(handle)?.parent()?,
+            Node::Body(handle) => self.parent(handle)?,
+        };
+        bodies.contains(body).then_some(Node::Body(body))
+    }
+}

@@ -1,0 +1,18 @@
+#![doc = include_str!("../README.md")]
+#![warn(missing_docs)]
+
+mod error;
+mod group;
+mod hierarchy;
+mod node;
+mod resolve;
+mod rule;
+mod rule_set;
+
+pub use error::RuleError;
+pub use group::CollisionGroup;
+pub use node::Node;
+pub use rapier3d;
+pub use resolve::{Explanation, Stage};
+pub use rule::CollisionRule;
+pub use rule_set::CollisionRuleSet;

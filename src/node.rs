@@ -1,0 +1,176 @@
+//! Nodes (the colliders and rigid bodies that carry rules) and the
+//! handle-indexed side tables that hold what the crate knows of them.
+
+use rapier3d::prelude::{ColliderHandle, RigidBodyHandle};
+
+/// A collider or a rigid body: anything a rule can be attached to.
+///
+/// Every method that takes a node takes `impl Into<Node>`, so handles are
+/// passed as they are.
+///
+/// ```
+/// use rapier3d::prelude::*;
+/// use rapier_collision_rules::Node;
+///
+/// let mut bodies = RigidBodySet::new();
+/// let body = bodies.insert(RigidBodyBuilder::dynamic());
+/// assert_eq!(Node::from(body), Node::Body(body));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Node {
+    /// A collider: a leaf of every chain.
+    Collider(ColliderHandle),
+    /// A rigid body: a collider's parent, or a parent in the crate's parent map.
+    Body(RigidBodyHandle),
+}
+
+impl From<ColliderHandle> for Node {
+    fn from(handle: ColliderHandle) -> Self {
+        Node::Collider(handle)
+    }
+}
+
+impl From<RigidBodyHandle> for Node {
+    fn from(handle: RigidBodyHandle) -> Self {
+        Node::Body(handle)
+    }
+}
+
+/// A generational handle of Rapier's: a slot index and the slot's generation.
+pub(crate) trait Handle: Copy {
+    fn raw_parts(self) -> (u32, u32);
+    fn from_raw(index: u32, generation: u32) -> Self;
+}
+
+impl Handle for ColliderHandle {
+    fn raw_parts(self) -> (u32, u32) {
+        self.into_raw_parts()
+    }
+    fn from_raw(index: u32, generation: u32) -> Self {
+        ColliderHandle::from_raw_parts(index, generation)
+    }
+}
+
+impl Handle for RigidBodyHandle {
+    fn raw_parts(self) -> (u32, u32) {
+        self.into_raw_parts()
+    }
+    fn from_raw(index: u32, generation: u32) -> Self {
+        RigidBodyHandle::from_raw_parts(index, generation)
+    }
+}
+
+/// A side table keyed by Rapier handles, stored densely by slot index like
+/// Rapier's own `Coarena`. A handle whose generation differs from the stored
+/// one (a slot Rapier has reused) finds nothing.
+#[derive(Clone, Debug)]
+pub(crate) struct HandleMap<H, V> {
+    slots: Vec<Option<(u32, V)>>,
+    _handle: std::marker::PhantomData<fn(H)>,
+}
+
+impl<H, V> Default for HandleMap<H, V> {
+    fn default() -> Self {
+        HandleMap {
+            slots: Vec::new(),
+            _handle: std::marker::PhantomData,
+        }
+    }
+}
+
+impl<H: Handle, V> HandleMap<H, V> {
+    #[inline]
+    pub(crate) fn get(&self, handle: H) -> Option<&V> {
+        let (index, generation) = handle.raw_parts();
+        match self.slots.get(index as usize) {
+            Some(Some((stored, value))) if *stored == generation => Some(value),
+            _ => None,
+        }
+    }
+
+    /// Whether the slot of `handle` holds a newer generation: Rapier has
+    /// removed the object and reused its slot, so `handle` names nothing.
+    #[inline]
+    pub(crate) fn is_superseded(&self, handle: H) -> bool {
+        let (index, generation) = handle.raw_parts();
+        matches!(self.slots.get(index as usize), Some(Some((stored, _))) if *stored > generation)
+    }
+
+    /// Stores `value` for `handle`. Returns what the slot held before, of
+    /// this generation or an older one (whose object Rapier has removed), so
+    /// that the caller can let go of it. The caller checks
+    /// [`is_superseded`](Self::is_superseded) first.
+    pub(crate) fn insert(&mut self, handle: H, value: V) -> Option<V> {
+        debug_assert!(!self.is_superseded(handle), "insert through a dead handle");
+        let (index, generation) = handle.raw_parts();
+        let index = index as usize;
+        if index >= self.slots.len() {
+            self.slots.resize_with(index + 1, || None);
+        }
+        self.slots[index]
+            .replace((generation, value))
+            .map(|(_, value)| value)
+    }
+
+    pub(crate) fn remove(&mut self, handle: H) -> Option<V> {
+        let (index, generation) = handle.raw_parts();
+        let slot = self.slots.get_mut(index as usize)?;
+        match slot {
+            Some((stored, _)) if *stored == generation => slot.take().map(|(_, value)| value),
+            _ => None,
+        }
+    }
+
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (H, &V)> + '_ {
+        self.slots.iter().enumerate().filter_map(|(index, slot)| {
+            slot.as_ref()
+                .map(|(generation, value)| (H::from_raw(index as u32, *generation), value))
+        })
+    }
+
+    pub(crate) fn retain(&mut self, mut keep: impl FnMut(H, &mut V) -> bool) {
+        for (index, slot) in self.slots.iter_mut().enumerate() {
+            if let Some((generation, value)) = slot {
+                if !keep(H::from_raw(index as u32, *generation), value) {
+                    *slot = None;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_reused_slot_does_not_see_the_old_value() {
+        let mut map = HandleMap::<ColliderHandle, u8>::default();
+        let old = ColliderHandle::from_raw_parts(3, 0);
+        let new = ColliderHandle::from_raw_parts(3, 1);
+        map.insert(old, 7);
+        assert_eq!(map.get(new), None);
+        assert_eq!(map.remove(new), None);
+        assert_eq!(
+            map.insert(new, 9),
+            Some(7),
+            "the older generation is evicted"
+        );
+        assert!(map.is_superseded(old));
+        assert!(!map.is_superseded(new));
+        assert_eq!(map.get(old), None);
+        assert_eq!(map.get(new), Some(&9));
+    }
+
+    #[test]
+    fn insert_remove_and_retain() {
+        let mut map = HandleMap::<RigidBodyHandle, u8>::default();
+        for i in 0..5 {
+            map.insert(RigidBodyHandle::from_raw_parts(i, 0), i as u8);
+        }
+        assert_eq!(map.remove(RigidBodyHandle::from_raw_parts(1, 0)), Some(1));
+        map.retain(|_, v| *v % 2 == 0);
+        let kept: Vec<u8> = map.iter().map(|(_, v)| *v).collect();
+        assert_eq!(kept, [0, 2, 4]);
+    }
+}

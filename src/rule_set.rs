@@ -1,0 +1,654 @@
+//! `CollisionRuleSet`: every rule of one world and every verb that edits
+//! them, each keeping the set's invariants.
+
+use hashbrown::HashMap;
+use rapier3d::prelude::{ColliderHandle, ColliderSet, RigidBodyHandle, RigidBodySet};
+
+use crate::group::GroupTable;
+use crate::hierarchy::Hierarchy;
+use crate::node::HandleMap;
+use crate::{CollisionGroup, CollisionRule, Node, RuleError};
+
+/// The rules one node carries (seed 2.A). Several nodes may share one record.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct Record {
+    pub(crate) personal: CollisionRule,
+    pub(crate) group: Option<CollisionGroup>,
+    /// Never holds a `Defer` value: an explicit `Defer` is stored as no entry.
+    pub(crate) specific: HashMap<Node, CollisionRule>,
+    /// How many nodes use this record; a record nobody uses is freed at once.
+    users: u32,
+}
+
+impl Record {
+    fn is_empty(&self) -> bool {
+        self.personal == CollisionRule::Defer && self.group.is_none() && self.specific.is_empty()
+    }
+}
+
+/// The index of a record in [`Records`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct RecordId(u32);
+
+/// The records, in an arena with a free list.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Records {
+    slots: Vec<Option<Record>>,
+    free: Vec<u32>,
+}
+
+impl Records {
+    fn insert(&mut self, record: Record) -> RecordId {
+        match self.free.pop() {
+            Some(index) => {
+                self.slots[index as usize] = Some(record);
+                RecordId(index)
+            }
+            None => {
+                self.slots.push(Some(record));
+                RecordId(self.slots.len() as u32 - 1)
+            }
+        }
+    }
+
+    #[inline]
+    pub(crate) fn get(&self, id: RecordId) -> &Record {
+        // OK since a node's RecordId always names a live record: records are
+        // freed only when their last user lets go.
+        self.slots[id.0 as usize]
+            .as_ref()
+            .expect("a node names a freed record")
+    }
+
+    fn get_mut(&mut self, id: RecordId) -> &mut Record {
+        self.slots[id.0 as usize]
+            .as_mut()
+            .expect("a node names a freed record")
+    }
+
+    fn release(&mut self, id: RecordId) {
+        let record = self.get_mut(id);
+        record.users -= 1;
+        if record.users == 0 {
+            self.slots[id.0 as usize] = None;
+            self.free.push(id.0);
+        }
+    }
+
+    pub(crate) fn live(&self) -> impl Iterator<Item = &Record> + '_ {
+        self.slots.iter().flatten()
+    }
+
+    fn live_mut(&mut self) -> impl Iterator<Item = &mut Record> + '_ {
+        self.slots.iter_mut().flatten()
+    }
+}
+
+/// All collision rules of one world: the group table, the default rule, the
+/// rules of each collider and rigid body, and the parent map between bodies.
+///
+/// Rules are decided per pair of colliders by [`resolve`](Self::resolve),
+/// from the most specific stage to the most general (see the crate docs).
+///
+/// ```
+/// use rapier3d::prelude::*;
+/// use rapier_collision_rules::{CollisionRule, CollisionRuleSet};
+///
+/// let mut bodies = RigidBodySet::new();
+/// let mut colliders = ColliderSet::new();
+/// let ghost = bodies.insert(RigidBodyBuilder::dynamic());
+/// let wall = bodies.insert(RigidBodyBuilder::fixed());
+/// let g = colliders.insert_with_parent(ColliderBuilder::ball(0.5), ghost, &mut bodies);
+/// let w = colliders.insert_with_parent(ColliderBuilder::cuboid(5.0, 5.0, 0.1), wall, &mut bodies);
+///
+/// let mut rules = CollisionRuleSet::default();
+/// rules.set_personal(ghost, CollisionRule::NoResponse);
+/// assert_eq!(rules.resolve(&bodies, &colliders, g, w), CollisionRule::NoResponse);
+/// ```
+#[derive(Clone, Debug)]
+pub struct CollisionRuleSet {
+    pub(crate) groups: GroupTable,
+    pub(crate) default_rule: CollisionRule,
+    collider_records: HandleMap<ColliderHandle, RecordId>,
+    body_records: HandleMap<RigidBodyHandle, RecordId>,
+    pub(crate) records: Records,
+    pub(crate) hierarchy: Hierarchy,
+}
+
+impl Default for CollisionRuleSet {
+    fn default() -> Self {
+        CollisionRuleSet {
+            groups: GroupTable::default(),
+            default_rule: CollisionRule::Normal,
+            collider_records: HandleMap::default(),
+            body_records: HandleMap::default(),
+            records: Records::default(),
+            hierarchy: Hierarchy::default(),
+        }
+    }
+}
+
+/// Groups (seed 2.B).
+impl CollisionRuleSet {
+    /// A new group, distinct from every other group of this set.
+    pub fn create_group(&mut self) -> CollisionGroup {
+        self.groups.create()
+    }
+
+    /// Sets the rule between two groups; the order of `a` and `b` does not
+    /// matter, and `Defer` removes the entry.
+    ///
+    /// ```
+    /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet};
+    ///
+    /// let mut rules = CollisionRuleSet::default();
+    /// let (player, debris) = (rules.create_group(), rules.create_group());
+    /// rules.set_group_rule(player, debris, CollisionRule::NoPair);
+    /// assert_eq!(rules.group_rule(debris, player), CollisionRule::NoPair);
+    /// rules.remove_group_rule(debris, player);
+    /// assert_eq!(rules.group_rule(player, debris), CollisionRule::Defer);
+    /// ```
+    pub fn set_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup, rule: CollisionRule) {
+        self.groups.set(a, b, rule);
+    }
+
+    /// The rule between two groups, `Defer` where the table has no entry.
+    #[must_use]
+    pub fn group_rule(&self, a: CollisionGroup, b: CollisionGroup) -> CollisionRule {
+        self.groups.get(a, b)
+    }
+
+    /// Removes the entry between two groups (the built-in kinematic entry too).
+    pub fn remove_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup) {
+        self.groups.remove(a, b);
+    }
+
+    /// Each group of `set` gets `self_rule` with itself and `other_rule`
+    /// with every other group of `set`.
+    ///
+    /// ```
+    /// use rapier_collision_rules::{CollisionRule::*, CollisionRuleSet};
+    ///
+    /// let mut rules = CollisionRuleSet::default();
+    /// let team = [rules.create_group(), rules.create_group()];
+    /// rules.set_group_rules_in_set(&team, NoResponse, NoPair);
+    /// assert_eq!(rules.group_rule(team[0], team[0]), NoResponse);
+    /// assert_eq!(rules.group_rule(team[1], team[0]), NoPair);
+    /// rules.remove_group_rules_in_set(&team);
+    /// assert_eq!(rules.group_rule(team[1], team[1]), Defer);
+    /// ```
+    pub fn set_group_rules_in_set(
+        &mut self,
+        set: &[CollisionGroup],
+        self_rule: CollisionRule,
+        other_rule: CollisionRule,
+    ) {
+        self.groups.set_in_set(set, self_rule, other_rule);
+    }
+
+    /// Removes every entry between two groups of `set`, each with itself included.
+    pub fn remove_group_rules_in_set(&mut self, set: &[CollisionGroup]) {
+        self.groups.remove_in_set(set);
+    }
+
+    /// `group` gets `rule` with each group of `set` (with itself only if it
+    /// is listed in `set`).
+    ///
+    /// ```
+    /// use rapier_collision_rules::{CollisionRule::*, CollisionRuleSet};
+    ///
+    /// let mut rules = CollisionRuleSet::default();
+    /// let ghost = rules.create_group();
+    /// let walls = [rules.create_group(), rules.create_group()];
+    /// rules.set_group_rules_with_set(ghost, &walls, NoResponse);
+    /// assert_eq!(rules.group_rule(walls[1], ghost), NoResponse);
+    /// rules.remove_group_rules_with_set(ghost, &walls[..1]);
+    /// assert_eq!(rules.group_rule(walls[0], ghost), Defer);
+    /// ```
+    pub fn set_group_rules_with_set(
+        &mut self,
+        group: CollisionGroup,
+        set: &[CollisionGroup],
+        rule: CollisionRule,
+    ) {
+        self.groups.set_with_set(group, set, rule);
+    }
+
+    /// Removes the entries between `group` and each group of `set`.
+    pub fn remove_group_rules_with_set(&mut self, group: CollisionGroup, set: &[CollisionGroup]) {
+        self.groups.remove_with_set(group, set);
+    }
+
+    /// Every group of `a` gets `rule` with every group of `b`; pairs inside
+    /// one set are left alone.
+    ///
+    /// ```
+    /// use rapier_collision_rules::{CollisionRule::*, CollisionRuleSet};
+    ///
+    /// let mut rules = CollisionRuleSet::default();
+    /// let red = [rules.create_group(), rules.create_group()];
+    /// let blue = [rules.create_group()];
+    /// rules.set_group_rules_between_sets(&red, &blue, NoContacts);
+    /// assert_eq!(rules.group_rule(blue[0], red[1]), NoContacts);
+    /// assert_eq!(rules.group_rule(red[0], red[1]), Defer);
+    /// rules.remove_group_rules_between_sets(&red, &blue);
+    /// assert_eq!(rules.group_rule(red[0], blue[0]), Defer);
+    /// ```
+    pub fn set_group_rules_between_sets(
+        &mut self,
+        a: &[CollisionGroup],
+        b: &[CollisionGroup],
+        rule: CollisionRule,
+    ) {
+        self.groups.set_between_sets(a, b, rule);
+    }
+
+    /// Removes every entry between a group of `a` and a group of `b`.
+    pub fn remove_group_rules_between_sets(&mut self, a: &[CollisionGroup], b: &[CollisionGroup]) {
+        self.groups.remove_between_sets(a, b);
+    }
+
+    /// Every entry of the group table, each unordered pair once, in no
+    /// particular order.
+    pub fn group_rules(
+        &self,
+    ) -> impl Iterator<Item = (CollisionGroup, CollisionGroup, CollisionRule)> + '_ {
+        self.groups.iter()
+    }
+
+    /// How many groups exist: the two built-in groups plus every created one.
+    #[must_use]
+    pub fn group_count(&self) -> u32 {
+        self.groups.group_count()
+    }
+}
+
+/// The world-wide default (stage 4).
+impl CollisionRuleSet {
+    /// The rule of a pair that no stage decides. `Defer` is allowed and is
+    /// then what [`resolve`](Self::resolve) returns for such pairs.
+    pub fn set_default_rule(&mut self, rule: CollisionRule) {
+        self.default_rule = rule;
+    }
+
+    /// The rule of a pair that no stage decides; `Normal` unless changed.
+    #[must_use]
+    pub fn default_rule(&self) -> CollisionRule {
+        self.default_rule
+    }
+}
+
+/// The rules of each node (seed 2.A) and their sharing (seed 3.A, 3.C.a).
+impl CollisionRuleSet {
+    #[inline]
+    pub(crate) fn record_id(&self, node: Node) -> Option<RecordId> {
+        match node {
+            Node::Collider(handle) => self.collider_records.get(handle).copied(),
+            Node::Body(handle) => self.body_records.get(handle).copied(),
+        }
+    }
+
+    #[inline]
+    pub(crate) fn record(&self, node: Node) -> Option<&Record> {
+        self.record_id(node).map(|id| self.records.get(id))
+    }
+
+    /// Whether `node` names an object Rapier has removed, as far as this set
+    /// can tell: it has seen a newer object in the same slot.
+    fn is_superseded(&self, node: Node) -> bool {
+        match node {
+            Node::Collider(handle) => self.collider_records.is_superseded(handle),
+            Node::Body(handle) => self.body_records.is_superseded(handle),
+        }
+    }
+
+    /// The record of `node`, created empty if it has none; `None` for a
+    /// handle of a removed object (edits through it are ignored).
+    fn record_mut(&mut self, node: Node) -> Option<&mut Record> {
+        if self.is_superseded(node) {
+            return None;
+        }
+        let id = match self.record_id(node) {
+            Some(id) => id,
+            None => {
+                let id = self.records.insert(Record {
+                    users: 1,
+                    ..Record::default()
+                });
+                self.attach(node, id);
+                id
+            }
+        };
+        Some(self.records.get_mut(id))
+    }
+
+    /// Makes `node` use record `id`, letting go of the record its slot held
+    /// before (its own, or a removed object's).
+    fn attach(&mut self, node: Node, id: RecordId) {
+        let previous = match node {
+            Node::Collider(handle) => self.collider_records.insert(handle, id),
+            Node::Body(handle) => self.body_records.insert(handle, id),
+        };
+        if let Some(previous) = previous {
+            self.records.release(previous);
+        }
+    }
+
+    /// Lets go of `node`'s record.
+    fn detach(&mut self, node: Node) {
+        let previous = match node {
+            Node::Collider(handle) => self.collider_records.remove(handle),
+            Node::Body(handle) => self.body_records.remove(handle),
+        };
+        if let Some(previous) = previous {
+            self.records.release(previous);
+        }
+    }
+
+    /// Drops `node`'s record if it holds nothing and nobody else uses it,
+    /// so that a node whose rules were all cleared costs nothing.
+    fn tidy(&mut self, node: Node) {
+        if let Some(id) = self.record_id(node) {
+            let record = self.records.get(id);
+            if record.users == 1 && record.is_empty() {
+                self.detach(node);
+            }
+        }
+    }
+
+    /// Puts `node` in `group` (`None`: no explicit group; the node then takes
+    /// the nearest explicit group up its chain, or its body's default group).
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::CollisionRuleSet;
+    ///
+    /// let mut bodies = RigidBodySet::new();
+    /// let body = bodies.insert(RigidBodyBuilder::dynamic());
+    /// let mut rules = CollisionRuleSet::default();
+    /// let players = rules.create_group();
+    /// rules.set_group(body, Some(players));
+    /// assert_eq!(rules.group(body), Some(players));
+    /// ```
+    pub fn set_group(&mut self, node: impl Into<Node>, group: Option<CollisionGroup>) {
+        let node = node.into();
+        if group.is_none() && self.record_id(node).is_none() {
+            return;
+        }
+        if let Some(record) = self.record_mut(node) {
+            record.group = group;
+        }
+        self.tidy(node);
+    }
+
+    /// The node's own explicit group (not inherited, not a default).
+    #[must_use]
+    pub fn group(&self, node: impl Into<Node>) -> Option<CollisionGroup> {
+        self.record(node.into()).and_then(|record| record.group)
+    }
+
+    /// The node's personal rule (stage 2); `Defer` clears it.
+    pub fn set_personal(&mut self, node: impl Into<Node>, rule: CollisionRule) {
+        let node = node.into();
+        if rule == CollisionRule::Defer && self.record_id(node).is_none() {
+            return;
+        }
+        if let Some(record) = self.record_mut(node) {
+            record.personal = rule;
+        }
+        self.tidy(node);
+    }
+
+    /// The node's personal rule, `Defer` if it has none.
+    #[must_use]
+    pub fn personal(&self, node: impl Into<Node>) -> CollisionRule {
+        self.record(node.into())
+            .map_or(CollisionRule::Defer, |record| record.personal)
+    }
+
+    /// What `node` says about `other` (stage 1). `Defer` removes the entry.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet};
+    ///
+    /// let mut bodies = RigidBodySet::new();
+    /// let (a, b) = (bodies.insert(RigidBodyBuilder::dynamic()), bodies.insert(RigidBodyBuilder::dynamic()));
+    /// let mut rules = CollisionRuleSet::default();
+    /// rules.set_specific(a, b, CollisionRule::NoContacts);
+    /// assert_eq!(rules.specific(a, b), CollisionRule::NoContacts);
+    /// assert_eq!(rules.specific(b, a), CollisionRule::Defer, "each side has its own entry");
+    /// rules.remove_specific(a, b);
+    /// assert_eq!(rules.specific(a, b), CollisionRule::Defer);
+    /// ```
+    pub fn set_specific(
+        &mut self,
+        node: impl Into<Node>,
+        other: impl Into<Node>,
+        rule: CollisionRule,
+    ) {
+        let (node, other) = (node.into(), other.into());
+        if rule == CollisionRule::Defer {
+            self.remove_specific(node, other);
+        } else if let Some(record) = self.record_mut(node) {
+            record.specific.insert(other, rule);
+        }
+    }
+
+    /// What `node` says about `other`, `Defer` if nothing.
+    #[must_use]
+    pub fn specific(&self, node: impl Into<Node>, other: impl Into<Node>) -> CollisionRule {
+        let other = other.into();
+        self.record(node.into())
+            .and_then(|record| record.specific.get(&other).copied())
+            .unwrap_or(CollisionRule::Defer)
+    }
+
+    /// Removes what `node` says about `other`.
+    pub fn remove_specific(&mut self, node: impl Into<Node>, other: impl Into<Node>) {
+        let (node, other) = (node.into(), other.into());
+        if let Some(id) = self.record_id(node) {
+            self.records.get_mut(id).specific.remove(&other);
+            self.tidy(node);
+        }
+    }
+
+    /// From now on `to` uses `from`'s rule record: its group, personal rule
+    /// and specific entries, and any later edit through either node is seen
+    /// by both (seed 3.A). `to`'s own rules are dropped.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet};
+    ///
+    /// let mut bodies = RigidBodySet::new();
+    /// let (a, b) = (bodies.insert(RigidBodyBuilder::dynamic()), bodies.insert(RigidBodyBuilder::dynamic()));
+    /// let mut rules = CollisionRuleSet::default();
+    /// rules.share_rules(a, b);
+    /// rules.set_personal(b, CollisionRule::NoResponse);
+    /// assert_eq!(rules.personal(a), CollisionRule::NoResponse);
+    /// assert!(rules.shares_rules(a, b));
+    /// ```
+    pub fn share_rules(&mut self, from: impl Into<Node>, to: impl Into<Node>) {
+        let (from, to) = (from.into(), to.into());
+        if from == to || self.record_mut(from).is_none() || self.is_superseded(to) {
+            return;
+        }
+        let id = self.record_id(from).expect("record_mut made one");
+        if self.record_id(to) == Some(id) {
+            return;
+        }
+        self.records.get_mut(id).users += 1;
+        self.attach(to, id);
+    }
+
+    /// Whether `a` and `b` use one rule record.
+    #[must_use]
+    pub fn shares_rules(&self, a: impl Into<Node>, b: impl Into<Node>) -> bool {
+        let (a, b) = (a.into(), b.into());
+        a == b || matches!((self.record_id(a), self.record_id(b)), (Some(x), Some(y)) if x == y)
+    }
+
+    /// Makes every descendant of `node` share `node`'s rule record (seed
+    /// 3.C.a): the colliders of a body, and every body below it in the
+    /// parent map with their colliders. Later edits through any of them
+    /// reach all of them. Bodies or colliders added later are not included.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleError};
+    ///
+    /// let mut bodies = RigidBodySet::new();
+    /// let mut colliders = ColliderSet::new();
+    /// let chassis = bodies.insert(RigidBodyBuilder::dynamic());
+    /// let wheel = bodies.insert(RigidBodyBuilder::dynamic());
+    /// let tyre = colliders.insert_with_parent(ColliderBuilder::ball(0.4), wheel, &mut bodies);
+    /// let mut rules = CollisionRuleSet::default();
+    /// rules.set_parent(wheel, chassis)?;
+    /// rules.set_rules_recursive(chassis, &bodies, &colliders);
+    /// rules.set_personal(tyre, CollisionRule::NoContacts);
+    /// assert_eq!(rules.personal(chassis), CollisionRule::NoContacts);
+    /// # Ok::<(), RuleError>(())
+    /// ```
+    pub fn set_rules_recursive(
+        &mut self,
+        node: impl Into<Node>,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) {
+        let node = node.into();
+        for descendant in self.descendants(node, bodies, colliders) {
+            self.share_rules(node, descendant);
+        }
+    }
+
+    /// The nodes below `node`: for a body, its colliders and every body below
+    /// it in the parent map with their colliders; a collider has none.
+    #[must_use]
+    pub fn descendants(
+        &self,
+        node: impl Into<Node>,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Vec<Node> {
+        let Node::Body(root) = node.into() else {
+            return Vec::new();
+        };
+        let mut body_list = self.hierarchy.descendants(root);
+        body_list.push(root);
+        let mut nodes = Vec::new();
+        // Bodies missing from the set are not in the world: not descendants.
+        for (body, rigid_body) in body_list.iter().filter_map(|&b| Some((b, bodies.get(b)?))) {
+            nodes.extend(
+                rigid_body
+                    .colliders()
+                    .iter()
+                    .filter(|&&c| colliders.contains(c))
+                    .map(|&c| Node::Collider(c)),
+            );
+            if body != root {
+                nodes.push(Node::Body(body));
+            }
+        }
+        nodes
+    }
+}
+
+/// The parent map (seed 3.C).
+impl CollisionRuleSet {
+    /// Makes `parent` the parent of `child` in the crate's parent map,
+    /// replacing any earlier parent. A body as its own parent, or a parent
+    /// that already lies below `child`, is refused and changes nothing.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRuleSet, RuleError};
+    ///
+    /// let mut bodies = RigidBodySet::new();
+    /// let pelvis = bodies.insert(RigidBodyBuilder::dynamic());
+    /// let thigh = bodies.insert(RigidBodyBuilder::dynamic());
+    /// let mut rules = CollisionRuleSet::default();
+    /// rules.set_parent(thigh, pelvis)?;
+    /// assert_eq!(rules.parent(thigh), Some(pelvis));
+    /// assert_eq!(rules.set_parent(thigh, thigh), Err(RuleError::SelfParent { body: thigh }));
+    /// rules.remove_parent(thigh);
+    /// assert_eq!(rules.parent(thigh), None);
+    /// # Ok::<(), RuleError>(())
+    /// ```
+    pub fn set_parent(
+        &mut self,
+        child: RigidBodyHandle,
+        parent: RigidBodyHandle,
+    ) -> Result<(), RuleError> {
+        self.hierarchy.set_parent(child, parent)
+    }
+
+    /// Makes `child` a root again; returns its former parent.
+    pub fn remove_parent(&mut self, child: RigidBodyHandle) -> Option<RigidBodyHandle> {
+        self.hierarchy.remove_parent(child)
+    }
+
+    /// The parent of `child` in the crate's parent map.
+    #[must_use]
+    pub fn parent(&self, child: RigidBodyHandle) -> Option<RigidBodyHandle> {
+        self.hierarchy.parent(child)
+    }
+
+    /// Every link of the parent map as `(child, parent)`, in no particular order.
+    pub fn parents(&self) -> impl Iterator<Item = (RigidBodyHandle, RigidBodyHandle)> + '_ {
+        self.hierarchy.links()
+    }
+}
+
+/// Forgetting removed objects (SPEC section 4).
+impl CollisionRuleSet {
+    /// Forgets a node that left the world: its rules (a shared record lives
+    /// on for its other users), every specific entry about it, and for a body
+    /// every parent link that names it (its children become roots).
+    ///
+    /// [`RuleHooks`](crate) does this by itself for objects removed through
+    /// Rapier; call it when you use the rule set alone.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleError};
+    ///
+    /// let mut bodies = RigidBodySet::new();
+    /// let (a, b) = (bodies.insert(RigidBodyBuilder::dynamic()), bodies.insert(RigidBodyBuilder::dynamic()));
+    /// let mut rules = CollisionRuleSet::default();
+    /// rules.set_specific(a, b, CollisionRule::NoPair);
+    /// rules.set_parent(a, b)?;
+    /// rules.remove_node(b);
+    /// assert_eq!(rules.specific(a, b), CollisionRule::Defer);
+    /// assert_eq!(rules.parent(a), None);
+    /// # Ok::<(), RuleError>(())
+    /// ```
+    pub fn remove_node(&mut self, node: impl Into<Node>) {
+        let node = node.into();
+        self.detach(node);
+        for record in self.records.live_mut() {
+            record.specific.remove(&node);
+        }
+        if let Node::Body(body) = node {
+            self.hierarchy.forget(body);
+        }
+    }
+
+    /// Every node that has a rule record, in no particular order.
+    pub fn nodes(&self) -> impl Iterator<Item = Node> + '_ {
+        self.collider_records
+            .iter()
+            .map(|(handle, _)| Node::Collider(handle))
+            .chain(
+                self.body_records
+                    .iter()
+                    .map(|(handle, _)| Node::Body(handle)),
+            )
+    }
+
+    /// How many distinct rule records are in use.
+    #[must_use]
+    pub fn record_count(&self) -> usize {
+        self.records.live().count()
+    }
+}

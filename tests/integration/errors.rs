@@ -1,0 +1,67 @@
+//! Refused edits: the error values, and that a refusal changes nothing.
+
+use rapier_collision_rules::{CollisionRuleSet, RuleError};
+use rapier3d::prelude::*;
+
+fn bodies(n: usize) -> (RigidBodySet, Vec<RigidBodyHandle>) {
+    let mut set = RigidBodySet::new();
+    let handles = (0..n)
+        .map(|_| set.insert(RigidBodyBuilder::dynamic()))
+        .collect();
+    (set, handles)
+}
+
+#[test]
+fn self_parent_is_refused() {
+    let (_, b) = bodies(1);
+    let mut rules = CollisionRuleSet::default();
+    assert_eq!(
+        rules.set_parent(b[0], b[0]),
+        Err(RuleError::SelfParent { body: b[0] })
+    );
+    assert_eq!(rules.parent(b[0]), None);
+}
+
+#[test]
+fn a_cycle_of_any_length_is_refused_and_changes_nothing() {
+    for length in 2..=5 {
+        let (_, b) = bodies(length);
+        let mut rules = CollisionRuleSet::default();
+        for pair in b.windows(2) {
+            rules.set_parent(pair[0], pair[1]).expect("a chain is fine");
+        }
+        let before: Vec<_> = b.iter().map(|&x| rules.parent(x)).collect();
+        let (child, parent) = (b[length - 1], b[0]);
+        assert_eq!(
+            rules.set_parent(child, parent),
+            Err(RuleError::Cycle { child, parent }),
+            "closing a loop of {length}"
+        );
+        let after: Vec<_> = b.iter().map(|&x| rules.parent(x)).collect();
+        assert_eq!(before, after, "a refused edit changed the parent map");
+    }
+}
+
+#[test]
+fn reparenting_a_root_under_a_sibling_branch_is_fine() {
+    let (_, b) = bodies(3);
+    let mut rules = CollisionRuleSet::default();
+    rules.set_parent(b[1], b[0]).unwrap();
+    rules.set_parent(b[2], b[0]).unwrap();
+    assert_eq!(rules.set_parent(b[2], b[1]), Ok(()));
+    assert_eq!(rules.parent(b[2]), Some(b[1]));
+}
+
+#[test]
+fn errors_display_lowercase_and_name_the_handles() {
+    let (_, b) = bodies(2);
+    let error = RuleError::Cycle {
+        child: b[0],
+        parent: b[1],
+    };
+    let text = error.to_string();
+    assert!(text.starts_with("making"), "{text}");
+    assert!(text.contains(&format!("{:?}", b[0])), "{text}");
+    let boxed: Box<dyn std::error::Error> = Box::new(error);
+    assert!(boxed.source().is_none());
+}

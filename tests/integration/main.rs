@@ -1,0 +1,7 @@
+//! The integration tests, in one binary: table-driven resolution cases,
+//! property tests against a naive reference resolver, and error values.
+
+mod errors;
+mod properties;
+mod reference;
+mod vectors;

@@ -70,7 +70,7 @@ struct Link<'a> {
 }
 
 /// Chains of up to this many nodes are resolved without allocating.
-const INLINE_CHAIN: usize = 8;
+const INLINE_CHAIN: usize = 16;
 
 struct Chain<'a> {
     links: SmallVec<[Link<'a>; INLINE_CHAIN]>,
@@ -88,7 +88,7 @@ impl CollisionRuleSet {
     ///
     /// A collider missing from `colliders` is a one-node chain with no rules
     /// and no body; a body missing from `bodies` ends the chain below it.
-    /// Chains of up to eight nodes resolve without allocating.
+    /// Chains of up to sixteen nodes resolve without allocating.
     ///
     /// ```
     /// use rapier3d::prelude::*;

@@ -1,7 +1,11 @@
 //! The integration tests, in one binary: table-driven resolution cases,
 //! property tests against a naive reference resolver, and error values.
 
+mod alloc;
 mod errors;
 mod properties;
 mod reference;
 mod vectors;
+
+#[global_allocator]
+static ALLOCATOR: alloc::Counting = alloc::Counting;

@@ -4,14 +4,18 @@
 mod error;
 mod group;
 mod hierarchy;
+mod hooks;
 mod node;
+mod pairs;
 mod resolve;
 mod rule;
 mod rule_set;
 
 pub use error::RuleError;
 pub use group::CollisionGroup;
+pub use hooks::{CalculatorContext, PairCreated, RecalculationPolicy, RuleHooks};
 pub use node::Node;
+pub use pairs::ManifoldUpdate;
 pub use rapier3d;
 pub use resolve::{Explanation, Stage};
 pub use rule::CollisionRule;

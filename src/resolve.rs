@@ -293,6 +293,24 @@ impl CollisionRuleSet {
     }
 }
 
+/// Section 5 of the specification: two colliders neither of whose own
+/// bodies is dynamic cannot respond, so `Normal` becomes `NoResponse`.
+pub(crate) fn special_case(
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    a: ColliderHandle,
+    b: ColliderHandle,
+    rule: CollisionRule,
+) -> CollisionRule {
+    let dynamic =
+        |c| default_group(bodies, colliders, Node::Collider(c)) == CollisionGroup::DEFAULT_DYNAMIC;
+    if rule == CollisionRule::Normal && !dynamic(a) && !dynamic(b) {
+        CollisionRule::NoResponse
+    } else {
+        rule
+    }
+}
+
 /// `DEFAULT_DYNAMIC` for a node of a dynamic body, `DEFAULT_KINEMATIC` for
 /// one of a kinematic or fixed body and for a collider without a body.
 #[inline]

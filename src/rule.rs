@@ -1,4 +1,7 @@
-//! The five rules and their severity order.
+//! The five rules, their severity order, and what each means to Rapier's
+//! narrow phase: the one place that names `SolverFlags`.
+
+use rapier3d::prelude::SolverFlags;
 
 /// What a pair of colliders is allowed to do, from least to most restrictive.
 ///
@@ -59,6 +62,35 @@ impl CollisionRule {
     #[must_use]
     pub fn is_decided(self) -> bool {
         self != CollisionRule::Defer
+    }
+
+    /// Whether the narrow phase computes contacts for a pair with this rule.
+    /// A final `Defer` (a `Defer` default rule) behaves as `Normal`: no rule
+    /// decided, so the pair is left as plain Rapier would have it.
+    #[inline]
+    pub(crate) fn computes_contacts(self) -> bool {
+        self <= CollisionRule::NoResponse
+    }
+
+    /// Whether the solver applies impulses to a pair with this rule.
+    #[inline]
+    pub(crate) fn responds(self) -> bool {
+        self <= CollisionRule::Normal
+    }
+}
+
+/// The contact filter's answer for a pair: `None` for no contacts, else the
+/// solver flags. `computes` and `responds` come from the pair's rule and
+/// manifold setting; `again` is true for a second answer in one step, which
+/// only the CCD asks: a pair without response must then be invisible to the
+/// sweep (`Some(empty)` would stop the fast body at it).
+#[inline]
+pub(crate) fn contact_answer(computes: bool, responds: bool, again: bool) -> Option<SolverFlags> {
+    match (computes, responds) {
+        (false, _) => None,
+        (true, true) => Some(SolverFlags::COMPUTE_RIGID_IMPULSES),
+        (true, false) if again => None,
+        (true, false) => Some(SolverFlags::empty()),
     }
 }
 

@@ -84,6 +84,47 @@ impl Records {
     }
 }
 
+/// What the edits since the last [`CollisionRuleSet::take_changes`] touched,
+/// for the hooks' `OnChange` policy.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Changes {
+    /// An edit that can affect any pair (the group table, the default rule).
+    pub(crate) everything: bool,
+    records: Vec<RecordId>,
+    nodes: Vec<Node>,
+}
+
+/// Past this many remembered edits, the log gives up and says "everything".
+const CHANGE_LOG_LIMIT: usize = 4096;
+
+impl Changes {
+    fn node(&mut self, node: Node) {
+        if !self.everything {
+            self.nodes.push(node);
+            self.cap();
+        }
+    }
+
+    fn record(&mut self, id: RecordId) {
+        if !self.everything {
+            self.records.push(id);
+            self.cap();
+        }
+    }
+
+    pub(crate) fn everything(&mut self) {
+        self.everything = true;
+        self.records = Vec::new();
+        self.nodes = Vec::new();
+    }
+
+    fn cap(&mut self) {
+        if self.records.len() + self.nodes.len() > CHANGE_LOG_LIMIT {
+            self.everything();
+        }
+    }
+}
+
 /// All collision rules of one world: the group table, the default rule, the
 /// rules of each collider and rigid body, and the parent map between bodies.
 ///
@@ -113,6 +154,7 @@ pub struct CollisionRuleSet {
     body_records: HandleMap<RigidBodyHandle, RecordId>,
     pub(crate) records: Records,
     pub(crate) hierarchy: Hierarchy,
+    changes: Changes,
 }
 
 impl Default for CollisionRuleSet {
@@ -124,6 +166,7 @@ impl Default for CollisionRuleSet {
             body_records: HandleMap::default(),
             records: Records::default(),
             hierarchy: Hierarchy::default(),
+            changes: Changes::default(),
         }
     }
 }
@@ -150,6 +193,7 @@ impl CollisionRuleSet {
     /// ```
     pub fn set_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup, rule: CollisionRule) {
         self.groups.set(a, b, rule);
+        self.changes.everything();
     }
 
     /// The rule between two groups, `Defer` where the table has no entry.
@@ -161,6 +205,7 @@ impl CollisionRuleSet {
     /// Removes the entry between two groups (the built-in kinematic entry too).
     pub fn remove_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup) {
         self.groups.remove(a, b);
+        self.changes.everything();
     }
 
     /// Each group of `set` gets `self_rule` with itself and `other_rule`
@@ -184,11 +229,13 @@ impl CollisionRuleSet {
         other_rule: CollisionRule,
     ) {
         self.groups.set_in_set(set, self_rule, other_rule);
+        self.changes.everything();
     }
 
     /// Removes every entry between two groups of `set`, each with itself included.
     pub fn remove_group_rules_in_set(&mut self, set: &[CollisionGroup]) {
         self.groups.remove_in_set(set);
+        self.changes.everything();
     }
 
     /// `group` gets `rule` with each group of `set` (with itself only if it
@@ -212,11 +259,13 @@ impl CollisionRuleSet {
         rule: CollisionRule,
     ) {
         self.groups.set_with_set(group, set, rule);
+        self.changes.everything();
     }
 
     /// Removes the entries between `group` and each group of `set`.
     pub fn remove_group_rules_with_set(&mut self, group: CollisionGroup, set: &[CollisionGroup]) {
         self.groups.remove_with_set(group, set);
+        self.changes.everything();
     }
 
     /// Every group of `a` gets `rule` with every group of `b`; pairs inside
@@ -241,11 +290,13 @@ impl CollisionRuleSet {
         rule: CollisionRule,
     ) {
         self.groups.set_between_sets(a, b, rule);
+        self.changes.everything();
     }
 
     /// Removes every entry between a group of `a` and a group of `b`.
     pub fn remove_group_rules_between_sets(&mut self, a: &[CollisionGroup], b: &[CollisionGroup]) {
         self.groups.remove_between_sets(a, b);
+        self.changes.everything();
     }
 
     /// Every entry of the group table, each unordered pair once, in no
@@ -269,6 +320,7 @@ impl CollisionRuleSet {
     /// then what [`resolve`](Self::resolve) returns for such pairs.
     pub fn set_default_rule(&mut self, rule: CollisionRule) {
         self.default_rule = rule;
+        self.changes.everything();
     }
 
     /// The rule of a pair that no stage decides; `Normal` unless changed.
@@ -345,9 +397,18 @@ impl CollisionRuleSet {
         }
     }
 
+    /// Logs an edit of `node`'s rules (and so of every node sharing its record).
+    fn touch(&mut self, node: Node) {
+        self.changes.node(node);
+        if let Some(id) = self.record_id(node) {
+            self.changes.record(id);
+        }
+    }
+
     /// Drops `node`'s record if it holds nothing and nobody else uses it,
     /// so that a node whose rules were all cleared costs nothing.
     fn tidy(&mut self, node: Node) {
+        self.touch(node);
         if let Some(id) = self.record_id(node) {
             let record = self.records.get(id);
             if record.users == 1 && record.is_empty() {
@@ -432,6 +493,7 @@ impl CollisionRuleSet {
             self.remove_specific(node, other);
         } else if let Some(record) = self.record_mut(node) {
             record.specific.insert(other, rule);
+            self.touch(node);
         }
     }
 
@@ -480,6 +542,7 @@ impl CollisionRuleSet {
         }
         self.records.get_mut(id).users += 1;
         self.attach(to, id);
+        self.changes.node(to);
     }
 
     /// Whether `a` and `b` use one rule record.
@@ -580,12 +643,16 @@ impl CollisionRuleSet {
         child: RigidBodyHandle,
         parent: RigidBodyHandle,
     ) -> Result<(), RuleError> {
-        self.hierarchy.set_parent(child, parent)
+        self.hierarchy.set_parent(child, parent)?;
+        self.changes.node(Node::Body(child));
+        Ok(())
     }
 
     /// Makes `child` a root again; returns its former parent.
     pub fn remove_parent(&mut self, child: RigidBodyHandle) -> Option<RigidBodyHandle> {
-        self.hierarchy.remove_parent(child)
+        let parent = self.hierarchy.remove_parent(child)?;
+        self.changes.node(Node::Body(child));
+        Some(parent)
     }
 
     /// The parent of `child` in the crate's parent map.
@@ -630,8 +697,64 @@ impl CollisionRuleSet {
             record.specific.remove(&node);
         }
         if let Node::Body(body) = node {
+            for (child, parent) in self.hierarchy.links() {
+                if parent == body {
+                    self.changes.node(Node::Body(child));
+                }
+            }
             self.hierarchy.forget(body);
         }
+    }
+
+    /// Forgets every node the rule set knows that is missing from the Rapier
+    /// sets: bodies and colliders with rules, bodies in the parent map, and
+    /// the subjects of specific entries. Returns how many were forgotten.
+    pub fn remove_missing(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> usize {
+        let exists = |node: Node| match node {
+            Node::Collider(handle) => colliders.contains(handle),
+            Node::Body(handle) => bodies.contains(handle),
+        };
+        let mut missing: Vec<Node> = self.nodes().filter(|&n| !exists(n)).collect();
+        for (child, parent) in self.hierarchy.links() {
+            missing.extend(
+                [Node::Body(child), Node::Body(parent)]
+                    .into_iter()
+                    .filter(|&n| !exists(n)),
+            );
+        }
+        for record in self.records.live() {
+            missing.extend(record.specific.keys().copied().filter(|&n| !exists(n)));
+        }
+        missing.sort_unstable_by_key(|node| match *node {
+            Node::Collider(h) => (0, h.into_raw_parts()),
+            Node::Body(h) => (1, h.into_raw_parts()),
+        });
+        missing.dedup();
+        for &node in &missing {
+            self.remove_node(node);
+        }
+        missing.len()
+    }
+
+    /// The edits logged since the last call, and a fresh log.
+    pub(crate) fn take_changes(&mut self) -> Changes {
+        std::mem::take(&mut self.changes)
+    }
+
+    /// The nodes an edit log touched: logged nodes and every user of a
+    /// logged record. `None` when the log says "everything".
+    pub(crate) fn touched_nodes(&self, changes: &Changes) -> Option<Vec<Node>> {
+        if changes.everything {
+            return None;
+        }
+        let mut nodes = changes.nodes.clone();
+        if !changes.records.is_empty() {
+            nodes.extend(self.nodes().filter(|&node| {
+                self.record_id(node)
+                    .is_some_and(|id| changes.records.contains(&id))
+            }));
+        }
+        Some(nodes)
     }
 
     /// Every node that has a rule record, in no particular order.

@@ -5,6 +5,7 @@ mod alloc;
 mod errors;
 mod properties;
 mod reference;
+mod scenes;
 mod vectors;
 
 #[global_allocator]

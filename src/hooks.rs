@@ -1,0 +1,720 @@
+//! `RuleHooks`: the rules inside Rapier's step. The `PhysicsHooks` adapter,
+//! the step wrappers, and the upkeep around each step (new and removed
+//! objects, recalculation policies, waking).
+
+use std::sync::{Mutex, PoisonError};
+
+use hashbrown::{HashMap, HashSet};
+use rapier3d::prelude::*;
+
+use crate::node::HandleMap;
+use crate::pairs::{self, ManifoldUpdate, PairKey, PairState, PairTable};
+use crate::resolve::special_case;
+use crate::rule::contact_answer;
+use crate::{CollisionRule, CollisionRuleSet, Node};
+
+/// When live pairs are recalculated after the rules change.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum RecalculationPolicy {
+    /// The design document's behaviour: edits reach existing pairs only
+    /// through [`RuleHooks::force_recalculation`]; new pairs use the current
+    /// rules.
+    Manual,
+    /// Every edit recalculates the live pairs it can affect before the next
+    /// step, as if `force_recalculation` had been called on the edited nodes,
+    /// and wakes their bodies so that the edit takes effect.
+    #[default]
+    OnChange,
+    /// Every live pair is recalculated before every step (for calculators
+    /// that read state the crate cannot see).
+    EveryStep,
+}
+
+/// What a custom calculator is given: the pair, the Rapier sets, and the
+/// rules. Colliders come in no particular order.
+pub struct CalculatorContext<'a> {
+    /// One collider of the pair.
+    pub collider1: ColliderHandle,
+    /// The other collider of the pair.
+    pub collider2: ColliderHandle,
+    /// The world's rigid bodies.
+    pub bodies: &'a RigidBodySet,
+    /// The world's colliders.
+    pub colliders: &'a ColliderSet,
+    /// The rule set.
+    pub rules: &'a CollisionRuleSet,
+}
+
+impl CalculatorContext<'_> {
+    /// The default calculation for the pair: [`CollisionRuleSet::resolve`].
+    #[must_use]
+    pub fn default_rule(&self) -> CollisionRule {
+        self.rules
+            .resolve(self.bodies, self.colliders, self.collider1, self.collider2)
+    }
+}
+
+/// What the pair-created callback is given. Colliders come in no particular order.
+pub struct PairCreated<'a> {
+    /// One collider of the pair.
+    pub collider1: ColliderHandle,
+    /// The other collider of the pair.
+    pub collider2: ColliderHandle,
+    /// The rule the calculation gave the pair.
+    pub rule: CollisionRule,
+    /// The world's rigid bodies.
+    pub bodies: &'a RigidBodySet,
+    /// The world's colliders.
+    pub colliders: &'a ColliderSet,
+}
+
+type Calculator = Box<dyn Fn(&CalculatorContext<'_>) -> CollisionRule + Send + Sync>;
+type CreatedCallback = Box<dyn Fn(&PairCreated<'_>) -> Option<CollisionRule> + Send + Sync>;
+
+/// What the hooks remember of each collider, to notice changes made through Rapier.
+#[derive(Clone, Copy, Debug)]
+struct Known {
+    body: Option<RigidBodyHandle>,
+    dynamic: bool,
+}
+
+/// The hook flags every managed collider carries.
+const HOOKS: ActiveHooks =
+    ActiveHooks::FILTER_CONTACT_PAIRS.union(ActiveHooks::FILTER_INTERSECTION_PAIR);
+
+/// The collision rules inside Rapier's step: a [`PhysicsHooks`]
+/// implementation that answers every pair from its rule, keeps the table of
+/// live pairs, and configures the colliders' flags itself.
+///
+/// ```
+/// use rapier3d::prelude::*;
+/// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
+///
+/// let mut world = PhysicsWorld::new();
+/// let ground = world.insert_body(RigidBodyBuilder::fixed());
+/// let floor = world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+/// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.5, 0.0)));
+/// let g = world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
+///
+/// let mut rules = CollisionRuleSet::default();
+/// rules.set_personal(ghost, CollisionRule::NoResponse);
+/// let mut hooks = RuleHooks::new(rules);
+/// let mut paired = false;
+/// for _ in 0..60 {
+///     hooks.step(&mut world);
+///     paired |= hooks.pair_rule(g, floor) == Some(CollisionRule::NoResponse);
+/// }
+/// let y = world.bodies[ghost].translation().y;
+/// assert!(y < -1.0, "the ghost fell through the floor: y = {y}");
+/// assert!(paired, "the ghost and the floor formed a live NoResponse pair");
+/// ```
+pub struct RuleHooks {
+    rules: CollisionRuleSet,
+    policy: RecalculationPolicy,
+    pairs: PairTable,
+    /// Pairs first seen during the current step, admitted after it.
+    pending: Mutex<HashMap<PairKey, PairState>>,
+    calculator: Option<Calculator>,
+    on_created: Option<CreatedCallback>,
+    known: HandleMap<ColliderHandle, Known>,
+    /// Counts steps; the hook compares it to tell the CCD's second answer.
+    step: u64,
+    forced: Vec<Node>,
+    /// A calculator or callback changed: every pair is to be recalculated.
+    recalculate_all: bool,
+    to_wake: Vec<RigidBodyHandle>,
+    /// Colliders given the contact-modification flag for `ManifoldUpdate::Never`.
+    modifying: HashSet<ColliderHandle>,
+    manifolds_changed: bool,
+}
+
+impl std::fmt::Debug for RuleHooks {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RuleHooks")
+            .field("policy", &self.policy)
+            .field("live_pairs", &self.pairs().count())
+            .field("calculator", &self.calculator.is_some())
+            .field("on_created", &self.on_created.is_some())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Default for RuleHooks {
+    fn default() -> Self {
+        RuleHooks::new(CollisionRuleSet::default())
+    }
+}
+
+/// Building, and the rules.
+impl RuleHooks {
+    /// Hooks that apply `rules` to every collider of the worlds they step.
+    pub fn new(rules: CollisionRuleSet) -> RuleHooks {
+        RuleHooks {
+            rules,
+            policy: RecalculationPolicy::default(),
+            pairs: PairTable::default(),
+            pending: Mutex::new(HashMap::new()),
+            calculator: None,
+            on_created: None,
+            known: HandleMap::default(),
+            step: 0,
+            forced: Vec::new(),
+            recalculate_all: false,
+            to_wake: Vec::new(),
+            modifying: HashSet::new(),
+            manifolds_changed: false,
+        }
+    }
+
+    /// The rules.
+    #[must_use]
+    pub fn rules(&self) -> &CollisionRuleSet {
+        &self.rules
+    }
+
+    /// The rules, to edit. Under [`RecalculationPolicy::OnChange`] the live
+    /// pairs an edit can affect are recalculated before the next step.
+    pub fn rules_mut(&mut self) -> &mut CollisionRuleSet {
+        &mut self.rules
+    }
+
+    /// Chooses when live pairs follow rule edits (default `OnChange`).
+    pub fn set_policy(&mut self, policy: RecalculationPolicy) {
+        self.policy = policy;
+    }
+
+    /// The current recalculation policy.
+    #[must_use]
+    pub fn policy(&self) -> RecalculationPolicy {
+        self.policy
+    }
+
+    /// Replaces the default calculation (specific, personal, group,
+    /// default) for every pair (seed 3.D). The calculator can run the
+    /// default calculation itself with [`CalculatorContext::default_rule`].
+    /// The special case of two non-dynamic bodies still applies to its
+    /// answer. Live pairs are recalculated with it before the next step
+    /// (except under `Manual`).
+    ///
+    /// ```
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut hooks = RuleHooks::default();
+    /// // Sensors aside, nothing responds to anything: a world of ghosts.
+    /// hooks.set_calculator(|ctx| ctx.default_rule().most_restrictive(CollisionRule::NoResponse));
+    /// ```
+    pub fn set_calculator(
+        &mut self,
+        calculator: impl Fn(&CalculatorContext<'_>) -> CollisionRule + Send + Sync + 'static,
+    ) {
+        self.calculator = Some(Box::new(calculator));
+        self.recalculate_all = true;
+    }
+
+    /// Goes back to the default calculation.
+    pub fn remove_calculator(&mut self) {
+        self.calculator = None;
+        self.recalculate_all = true;
+    }
+
+    /// Registers the pair-created callback (seed's immediate events): it
+    /// runs when a pair is created, before its first contact computation,
+    /// and again whenever the pair's rule is recalculated, and may replace
+    /// the pair's rule by returning `Some`. Rapier may call it from several
+    /// threads at once.
+    ///
+    /// ```
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.on_pair_created(|pair| {
+    ///     // Nothing may push anything in this world; contacts still report.
+    ///     (pair.rule == CollisionRule::Normal).then_some(CollisionRule::NoResponse)
+    /// });
+    /// ```
+    pub fn on_pair_created(
+        &mut self,
+        callback: impl Fn(&PairCreated<'_>) -> Option<CollisionRule> + Send + Sync + 'static,
+    ) {
+        self.on_created = Some(Box::new(callback));
+        self.recalculate_all = true;
+    }
+
+    /// Removes the pair-created callback.
+    pub fn remove_pair_created(&mut self) {
+        self.on_created = None;
+        self.recalculate_all = true;
+    }
+}
+
+/// Live pairs (seed 3.A).
+impl RuleHooks {
+    /// The rule of the live pair of `a` and `b`, in either order; `None` if
+    /// they form no live pair (a `NoPair` pair is not live).
+    #[must_use]
+    pub fn pair_rule(&self, a: ColliderHandle, b: ColliderHandle) -> Option<CollisionRule> {
+        self.pairs
+            .get(PairKey::new(a, b))
+            .map(PairState::rule)
+            .filter(|&rule| rule != CollisionRule::NoPair)
+    }
+
+    /// Every live pair with its rule, in no particular order.
+    pub fn pairs(
+        &self,
+    ) -> impl Iterator<Item = (ColliderHandle, ColliderHandle, CollisionRule)> + '_ {
+        self.pairs.iter().filter_map(|(key, state)| {
+            let (a, b) = key.colliders();
+            let rule = state.rule();
+            (rule != CollisionRule::NoPair).then_some((a, b, rule))
+        })
+    }
+
+    /// Replaces the rule of the live pair of `a` and `b` for the rest of the
+    /// pair's life (automatic recalculation leaves it alone;
+    /// [`force_recalculation`](Self::force_recalculation) drops it). `Defer`
+    /// drops the override. `NoPair` ends the pair for the crate. Returns
+    /// `false`, changing nothing, if `a` and `b` form no live pair.
+    pub fn set_pair_rule(
+        &mut self,
+        a: ColliderHandle,
+        b: ColliderHandle,
+        rule: CollisionRule,
+    ) -> bool {
+        let Some(state) = self.pairs.get_mut(PairKey::new(a, b)) else {
+            return false;
+        };
+        if state.rule() == CollisionRule::NoPair {
+            return false;
+        }
+        state.overridden = rule.is_decided().then_some(rule);
+        self.wake_pair(a, b);
+        true
+    }
+
+    /// Sets how the live pair of `a` and `b` updates its contacts. Returns
+    /// `false`, changing nothing, if they form no live pair.
+    pub fn set_manifold_update(
+        &mut self,
+        a: ColliderHandle,
+        b: ColliderHandle,
+        update: ManifoldUpdate,
+    ) -> bool {
+        let Some(state) = self.pairs.get_mut(PairKey::new(a, b)) else {
+            return false;
+        };
+        if state.rule() == CollisionRule::NoPair {
+            return false;
+        }
+        state.manifold = update;
+        *state
+            .frozen
+            .get_mut()
+            .unwrap_or_else(PoisonError::into_inner) = None;
+        self.manifolds_changed = true;
+        self.wake_pair(a, b);
+        true
+    }
+
+    /// The manifold setting of the live pair of `a` and `b`.
+    #[must_use]
+    pub fn manifold_update(&self, a: ColliderHandle, b: ColliderHandle) -> Option<ManifoldUpdate> {
+        self.pairs
+            .get(PairKey::new(a, b))
+            .filter(|state| state.rule() != CollisionRule::NoPair)
+            .map(|state| state.manifold)
+    }
+
+    /// Recalculates, before the next step, every live pair of `node` and of
+    /// its descendants (seed's `ForceCollisionRuleRecalculation`), dropping
+    /// their overrides. A pair that becomes `NoPair` stops being live.
+    pub fn force_recalculation(&mut self, node: impl Into<Node>) {
+        self.forced.push(node.into());
+    }
+
+    fn wake_pair(&mut self, a: ColliderHandle, b: ColliderHandle) {
+        self.to_wake.extend(self.known.get(a).and_then(|k| k.body));
+        self.to_wake.extend(self.known.get(b).and_then(|k| k.body));
+    }
+}
+
+/// Stepping.
+impl RuleHooks {
+    /// Steps `world` with the rules: [`prepare`](Self::prepare), waking what
+    /// the edits need awake, Rapier's step, and [`after_step`](Self::after_step).
+    pub fn step(&mut self, world: &mut PhysicsWorld) {
+        self.step_with_events(world, &());
+    }
+
+    /// [`step`](Self::step), with Rapier's events sent to `events`.
+    pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
+        self.prepare(&world.bodies, &mut world.colliders);
+        self.wake_edited(&mut world.islands, &mut world.bodies);
+        world.step_with_events(&*self, events);
+        self.after_step(&world.narrow_phase, &world.bodies, &world.colliders);
+    }
+
+    /// Before a bare `PhysicsPipeline::step`: notices colliders and bodies
+    /// added, removed or changed through Rapier, gives colliders the flags
+    /// the rules need, and recalculates live pairs as the policy says. Call
+    /// [`wake_edited`](Self::wake_edited) next, then step with these hooks,
+    /// then [`after_step`](Self::after_step).
+    pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+        self.step += 1;
+        let mut changed = self.sync_colliders(bodies, colliders);
+        self.rules.remove_missing(bodies, colliders);
+        self.configure_modification(colliders);
+
+        let changes = self.rules.take_changes();
+        let mut drop_overrides = HashSet::new();
+        for node in std::mem::take(&mut self.forced) {
+            drop_overrides.extend(self.colliders_under(node, bodies, colliders));
+        }
+        let everything = self.policy == RecalculationPolicy::EveryStep
+            || (self.policy == RecalculationPolicy::OnChange
+                && (changes.everything || std::mem::take(&mut self.recalculate_all)));
+        let mut affected = HashSet::new();
+        if self.policy == RecalculationPolicy::OnChange && !everything {
+            let touched = self.rules.touched_nodes(&changes).unwrap_or_default();
+            changed.extend(touched);
+            for node in changed {
+                affected.extend(self.colliders_under(node, bodies, colliders));
+            }
+        }
+        if self.policy == RecalculationPolicy::Manual {
+            self.recalculate_all = false;
+        }
+        if everything || !affected.is_empty() || !drop_overrides.is_empty() {
+            self.recalculate(bodies, colliders, everything, &affected, &drop_overrides);
+        }
+    }
+
+    /// Wakes the bodies of pairs whose rule an edit changed, so that the
+    /// change takes effect on sleeping bodies too. Part of
+    /// [`step`](Self::step); call it after [`prepare`](Self::prepare) when
+    /// stepping a bare pipeline.
+    pub fn wake_edited(&mut self, islands: &mut IslandManager, bodies: &mut RigidBodySet) {
+        for body in self.to_wake.drain(..) {
+            if bodies.contains(body) {
+                islands.wake_up(bodies, body, true);
+            }
+        }
+    }
+
+    /// After a bare `PhysicsPipeline::step`: admits the pairs created during
+    /// the step and forgets the pairs Rapier no longer has.
+    pub fn after_step(
+        &mut self,
+        narrow_phase: &NarrowPhase,
+        _bodies: &RigidBodySet,
+        _colliders: &ColliderSet,
+    ) {
+        let exists = |key: PairKey| {
+            let (a, b) = key.colliders();
+            narrow_phase.contact_pair(a, b).is_some()
+                || narrow_phase.intersection_pair(a, b).is_some()
+        };
+        let pending = std::mem::take(
+            self.pending
+                .get_mut()
+                .unwrap_or_else(PoisonError::into_inner),
+        );
+        for (key, state) in pending {
+            if exists(key) {
+                self.pairs.insert(key, state);
+            }
+        }
+        let mut never_ended = false;
+        self.pairs.retain(|key, state| {
+            let keep = exists(key);
+            never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
+            keep
+        });
+        self.manifolds_changed |= never_ended;
+    }
+
+    /// Notices colliders added, removed, moved to another body, or whose
+    /// body changed type; returns the nodes whose chains changed.
+    fn sync_colliders(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) -> Vec<Node> {
+        let mut removed = Vec::new();
+        self.known.retain(|handle, known| {
+            let gone = !colliders.contains(handle);
+            if gone {
+                removed.push((handle, known.body));
+            }
+            !gone
+        });
+        for &(handle, body) in &removed {
+            self.rules.remove_node(handle);
+            self.pairs.retain(|key, _| !key.involves(handle));
+            self.modifying.remove(&handle);
+            if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
+                self.rules.remove_node(body);
+            }
+        }
+
+        let mut changed = Vec::new();
+        let mut to_configure = Vec::new();
+        for (handle, collider) in colliders.iter() {
+            let body = collider.parent();
+            let dynamic = body
+                .and_then(|b| bodies.get(b))
+                .is_some_and(|b| b.is_dynamic());
+            match self.known.get(handle) {
+                None => {
+                    self.known.insert(handle, Known { body, dynamic });
+                }
+                Some(known) if known.body != body => {
+                    self.known.insert(handle, Known { body, dynamic });
+                    changed.push(Node::Collider(handle));
+                }
+                Some(known) if known.dynamic != dynamic => {
+                    self.known.insert(handle, Known { body, dynamic });
+                    changed.extend(body.map(Node::Body));
+                }
+                Some(_) => {}
+            }
+            let wanted = HOOKS | (collider.active_hooks() & ActiveHooks::MODIFY_SOLVER_CONTACTS);
+            if collider.active_hooks() != wanted
+                || collider.active_collision_types() != ActiveCollisionTypes::all()
+            {
+                to_configure.push((handle, wanted));
+            }
+        }
+        // `get_mut` marks a collider modified: only for those that need it.
+        for (handle, hooks) in to_configure {
+            let collider = &mut colliders[handle];
+            collider.set_active_hooks(hooks);
+            if collider.active_collision_types() != ActiveCollisionTypes::all() {
+                collider.set_active_collision_types(ActiveCollisionTypes::all());
+                // Changing the collision types alone sets no change flag:
+                // nudging the collision groups makes Rapier look again.
+                let groups = collider.collision_groups();
+                collider.set_collision_groups(InteractionGroups::none());
+                collider.set_collision_groups(groups);
+            }
+        }
+        changed
+    }
+
+    /// Gives the contact-modification flag to exactly the colliders of pairs
+    /// set to `ManifoldUpdate::Never`.
+    fn configure_modification(&mut self, colliders: &mut ColliderSet) {
+        if !std::mem::take(&mut self.manifolds_changed) {
+            return;
+        }
+        let mut wanted = HashSet::new();
+        for (key, state) in self.pairs.iter() {
+            if state.manifold == ManifoldUpdate::Never {
+                let (a, b) = key.colliders();
+                wanted.extend([a, b]);
+            }
+        }
+        for &handle in self.modifying.symmetric_difference(&wanted) {
+            if let Some(collider) = colliders.get_mut(handle) {
+                let hooks = collider.active_hooks() ^ ActiveHooks::MODIFY_SOLVER_CONTACTS;
+                collider.set_active_hooks(hooks);
+            }
+        }
+        self.modifying = wanted;
+    }
+
+    /// `node` itself if it is a collider, and every collider below it.
+    fn colliders_under(
+        &self,
+        node: Node,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Vec<ColliderHandle> {
+        let mut below: Vec<ColliderHandle> = self
+            .rules
+            .descendants(node, bodies, colliders)
+            .into_iter()
+            .filter_map(|n| match n {
+                Node::Collider(c) => Some(c),
+                Node::Body(_) => None,
+            })
+            .collect();
+        if let Node::Collider(c) = node {
+            below.push(c);
+        }
+        below
+    }
+
+    /// Recalculates the live pairs that are `everything`, or touch an
+    /// `affected` collider, or a `forced` one (whose overrides are dropped).
+    fn recalculate(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        everything: bool,
+        affected: &HashSet<ColliderHandle>,
+        forced: &HashSet<ColliderHandle>,
+    ) {
+        let mut updates = Vec::new();
+        for (key, _) in self.pairs.iter() {
+            let (a, b) = key.colliders();
+            let force = forced.contains(&a) || forced.contains(&b);
+            if force || everything || affected.contains(&a) || affected.contains(&b) {
+                updates.push((key, self.calculate(bodies, colliders, a, b), force));
+            }
+        }
+        for (key, computed, force) in updates {
+            let state = self
+                .pairs
+                .get_mut(key)
+                .expect("the key came from the table");
+            let before = state.rule();
+            state.computed = computed;
+            if force {
+                state.overridden = None;
+            }
+            if state.rule() != before {
+                let (a, b) = key.colliders();
+                self.wake_pair(a, b);
+            }
+        }
+    }
+
+    /// A pair's rule: the calculator or the default calculation, then the
+    /// pair-created callback.
+    fn calculate(
+        &self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        a: ColliderHandle,
+        b: ColliderHandle,
+    ) -> CollisionRule {
+        let mut rule = match &self.calculator {
+            Some(calculator) => {
+                let context = CalculatorContext {
+                    collider1: a,
+                    collider2: b,
+                    bodies,
+                    colliders,
+                    rules: &self.rules,
+                };
+                special_case(bodies, colliders, a, b, calculator(&context))
+            }
+            None => self.rules.resolve(bodies, colliders, a, b),
+        };
+        if let Some(callback) = &self.on_created {
+            let created = PairCreated {
+                collider1: a,
+                collider2: b,
+                rule,
+                bodies,
+                colliders,
+            };
+            if let Some(replaced) = callback(&created) {
+                rule = replaced;
+            }
+        }
+        rule
+    }
+
+    /// The hook's slow path: a pair not in the table. Calculates its rule
+    /// and keeps it as pending until the step ends. Returns the rule, the
+    /// manifold setting, and whether this answer must be read as the CCD's.
+    #[cold]
+    fn first_sighting(
+        &self,
+        context: &PairFilterContext<'_>,
+        key: PairKey,
+    ) -> (CollisionRule, ManifoldUpdate, bool) {
+        if let Some(state) = self.pending().get(&key) {
+            return (
+                state.rule(),
+                state.manifold,
+                state.answered_again(self.step),
+            );
+        }
+        let (a, b) = key.colliders();
+        let rule = self.calculate(context.bodies, context.colliders, a, b);
+        self.pending()
+            .entry(key)
+            .or_insert_with(|| PairState::new(rule, self.step));
+        // The CCD sweeps only bodies it marked active; a first answer to such
+        // a body may be the sweep's, so a pair without response stays out of
+        // it (its contacts start with the next step).
+        let maybe_ccd = context
+            .rigid_body1
+            .and_then(|body| context.bodies.get(body))
+            .is_some_and(|body| body.is_ccd_active());
+        (rule, ManifoldUpdate::ByRule, maybe_ccd)
+    }
+
+    fn pending(&self) -> std::sync::MutexGuard<'_, HashMap<PairKey, PairState>> {
+        self.pending.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    #[inline]
+    fn lookup(&self, context: &PairFilterContext<'_>) -> (CollisionRule, ManifoldUpdate, bool) {
+        let key = PairKey::new(context.collider1, context.collider2);
+        match self.pairs.get(key) {
+            Some(state) => (
+                state.rule(),
+                state.manifold,
+                state.answered_again(self.step),
+            ),
+            None => self.first_sighting(context, key),
+        }
+    }
+}
+
+impl PhysicsHooks for RuleHooks {
+    fn filter_contact_pair(&self, context: &PairFilterContext<'_>) -> Option<SolverFlags> {
+        let (rule, manifold, again) = self.lookup(context);
+        let computes = rule.computes_contacts()
+            || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair);
+        contact_answer(computes, rule.responds(), again)
+    }
+
+    fn filter_intersection_pair(&self, context: &PairFilterContext<'_>) -> bool {
+        let (rule, manifold, _) = self.lookup(context);
+        rule.computes_contacts()
+            || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair)
+    }
+
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext<'_>) {
+        let key = PairKey::new(context.collider1, context.collider2);
+        let Some(state) = self
+            .pairs
+            .get(key)
+            .filter(|s| s.manifold == ManifoldUpdate::Never)
+        else {
+            return;
+        };
+        let (bodies, body1, body2) = (context.bodies, context.rigid_body1, context.rigid_body2);
+        let Some(rigid) = context.rigid_mut() else {
+            return;
+        };
+        let subshapes = (rigid.manifold.subshape1, rigid.manifold.subshape2);
+        let mut frozen = state.frozen.lock().unwrap_or_else(PoisonError::into_inner);
+        let (step, manifolds) = frozen.get_or_insert_with(|| (self.step, Vec::new()));
+        match manifolds.iter().find(|m| m.subshapes() == subshapes) {
+            Some(manifold) => pairs::thaw(
+                bodies,
+                body1,
+                body2,
+                manifold,
+                rigid.normal,
+                rigid.solver_contacts,
+            ),
+            // Manifolds are frozen in the step the setting took effect; one
+            // that appears later had no contacts then.
+            None if *step == self.step => {
+                let manifold = pairs::freeze(
+                    bodies,
+                    body1,
+                    body2,
+                    subshapes,
+                    *rigid.normal,
+                    rigid.solver_contacts,
+                );
+                manifolds.push(manifold);
+            }
+            None => rigid.solver_contacts.clear(),
+        }
+    }
+}

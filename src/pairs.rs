@@ -1,0 +1,202 @@
+//! Live pairs (seed 3.A): each pair's rule, kept from the pair's creation to
+//! its end, its override, its manifold setting, and the contacts frozen by
+//! `ManifoldUpdate::Never`.
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use hashbrown::HashMap;
+use rapier3d::prelude::{
+    ColliderHandle, Pose, RigidBodyHandle, RigidBodySet, SolverContact, Vector,
+};
+
+use crate::CollisionRule;
+
+/// How a live pair's contacts are updated (seed's `ManifoldUpdateSetting`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ManifoldUpdate {
+    /// Contacts are computed when the rule allows them (`Normal`,
+    /// `NoResponse`).
+    #[default]
+    ByRule,
+    /// Contacts are computed whatever the rule (collision events included),
+    /// and solved only if the rule allows a response.
+    Always,
+    /// The solver keeps seeing the contacts the pair had when the setting
+    /// took effect, fixed in each body's frame, until the setting changes.
+    Never,
+}
+
+/// A pair of colliders in a fixed order, so that `(a, b)` and `(b, a)` are one key.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct PairKey(ColliderHandle, ColliderHandle);
+
+impl PairKey {
+    pub(crate) fn new(a: ColliderHandle, b: ColliderHandle) -> PairKey {
+        if a.into_raw_parts() <= b.into_raw_parts() {
+            PairKey(a, b)
+        } else {
+            PairKey(b, a)
+        }
+    }
+
+    pub(crate) fn colliders(self) -> (ColliderHandle, ColliderHandle) {
+        (self.0, self.1)
+    }
+
+    pub(crate) fn involves(self, collider: ColliderHandle) -> bool {
+        self.0 == collider || self.1 == collider
+    }
+}
+
+/// Solver contacts frozen in each body's frame.
+#[derive(Clone, Debug)]
+pub(crate) struct FrozenContact {
+    anchor1: Vector,
+    anchor2: Vector,
+    dist: f32,
+    contact: SolverContact,
+}
+
+/// One manifold's frozen contacts, keyed by the manifold's sub-shapes.
+#[derive(Clone, Debug)]
+pub(crate) struct FrozenManifold {
+    subshapes: (u32, u32),
+    /// The normal in the first body's frame.
+    normal: Vector,
+    contacts: Vec<FrozenContact>,
+}
+
+/// What the crate keeps about one live pair.
+#[derive(Debug)]
+pub(crate) struct PairState {
+    /// The rule the calculation (and the created callback) gave.
+    pub(crate) computed: CollisionRule,
+    /// A rule set with `set_pair_rule`, kept for the pair's life.
+    pub(crate) overridden: Option<CollisionRule>,
+    pub(crate) manifold: ManifoldUpdate,
+    /// The step in which the hook last answered for this pair: a second
+    /// answer in one step comes from the CCD (see `RuleHooks`).
+    pub(crate) last_answer: AtomicU64,
+    /// The contacts frozen by `ManifoldUpdate::Never`, with the step they
+    /// were frozen in; `None` until the first contact update after the
+    /// setting took effect.
+    pub(crate) frozen: Mutex<Option<(u64, Vec<FrozenManifold>)>>,
+}
+
+impl PairState {
+    pub(crate) fn new(computed: CollisionRule, step: u64) -> PairState {
+        PairState {
+            computed,
+            overridden: None,
+            manifold: ManifoldUpdate::ByRule,
+            last_answer: AtomicU64::new(step),
+            frozen: Mutex::new(None),
+        }
+    }
+
+    /// The pair's rule: its override if it has one, else the computed rule.
+    #[inline]
+    pub(crate) fn rule(&self) -> CollisionRule {
+        self.overridden.unwrap_or(self.computed)
+    }
+
+    /// Records an answer in `step`; `true` if the hook already answered for
+    /// this pair in the same step.
+    #[inline]
+    pub(crate) fn answered_again(&self, step: u64) -> bool {
+        self.last_answer.swap(step, Ordering::Relaxed) == step
+    }
+}
+
+/// The live-pair table. Pairs whose rule is `NoPair` stay in it (so that the
+/// hook keeps refusing them) but are not live for the user.
+#[derive(Debug, Default)]
+pub(crate) struct PairTable {
+    pairs: HashMap<PairKey, PairState>,
+}
+
+impl PairTable {
+    #[inline]
+    pub(crate) fn get(&self, key: PairKey) -> Option<&PairState> {
+        self.pairs.get(&key)
+    }
+
+    pub(crate) fn get_mut(&mut self, key: PairKey) -> Option<&mut PairState> {
+        self.pairs.get_mut(&key)
+    }
+
+    pub(crate) fn insert(&mut self, key: PairKey, state: PairState) {
+        self.pairs.insert(key, state);
+    }
+
+    pub(crate) fn retain(&mut self, mut keep: impl FnMut(PairKey, &mut PairState) -> bool) {
+        self.pairs.retain(|key, state| keep(*key, state));
+    }
+
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (PairKey, &PairState)> + '_ {
+        self.pairs.iter().map(|(key, state)| (*key, state))
+    }
+}
+
+/// The pose of a collider's body, or the identity for a collider without one.
+fn body_pose(bodies: &RigidBodySet, body: Option<RigidBodyHandle>) -> Pose {
+    body.and_then(|handle| bodies.get(handle))
+        .map_or(Pose::IDENTITY, |body| *body.position())
+}
+
+/// Freezes `contacts` (world anchors, as the contact-modification hook sees
+/// them) in each body's frame.
+pub(crate) fn freeze(
+    bodies: &RigidBodySet,
+    body1: Option<RigidBodyHandle>,
+    body2: Option<RigidBodyHandle>,
+    subshapes: (u32, u32),
+    normal: Vector,
+    contacts: &[SolverContact],
+) -> FrozenManifold {
+    let (pose1, pose2) = (body_pose(bodies, body1), body_pose(bodies, body2));
+    FrozenManifold {
+        subshapes,
+        normal: pose1.inverse_transform_vector(normal),
+        contacts: contacts
+            .iter()
+            .map(|contact| FrozenContact {
+                anchor1: pose1.inverse_transform_point(contact.anchor1),
+                anchor2: pose2.inverse_transform_point(contact.anchor2),
+                dist: contact.dist - (contact.anchor2 - contact.anchor1).dot(normal),
+                contact: *contact,
+            })
+            .collect(),
+    }
+}
+
+/// Replays a frozen manifold at the bodies' current poses: the anchors move
+/// with their bodies, and the distance follows them along the frozen normal.
+pub(crate) fn thaw(
+    bodies: &RigidBodySet,
+    body1: Option<RigidBodyHandle>,
+    body2: Option<RigidBodyHandle>,
+    frozen: &FrozenManifold,
+    normal: &mut Vector,
+    contacts: &mut Vec<SolverContact>,
+) {
+    let (pose1, pose2) = (body_pose(bodies, body1), body_pose(bodies, body2));
+    *normal = pose1.transform_vector(frozen.normal);
+    contacts.clear();
+    contacts.extend(frozen.contacts.iter().map(|f| {
+        let anchor1 = pose1.transform_point(f.anchor1);
+        let anchor2 = pose2.transform_point(f.anchor2);
+        let mut contact = f.contact;
+        contact.anchor1 = anchor1;
+        contact.anchor2 = anchor2;
+        contact.dist = f.dist + (anchor2 - anchor1).dot(*normal);
+        contact
+    }));
+}
+
+impl FrozenManifold {
+    pub(crate) fn subshapes(&self) -> (u32, u32) {
+        self.subshapes
+    }
+}

@@ -1,0 +1,678 @@
+//! Real `PhysicsWorld` scenes stepped with `RuleHooks`: what each rule does
+//! to bodies, contacts, events, live pairs and the CCD. Every assertion
+//! prints the measured value.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc::{Receiver, channel};
+
+use rapier_collision_rules::{
+    CollisionGroup, CollisionRule, CollisionRuleSet, ManifoldUpdate, RecalculationPolicy,
+    RuleError, RuleHooks,
+};
+use rapier3d::prelude::*;
+
+use CollisionRule::*;
+
+/// A world with a fixed ground slab whose top face is at y = 0.
+pub struct Scene {
+    pub world: PhysicsWorld,
+    pub ground: RigidBodyHandle,
+    pub floor: ColliderHandle,
+}
+
+impl Scene {
+    pub fn new() -> Scene {
+        let mut world = PhysicsWorld::new();
+        let ground =
+            world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+        let floor = world.insert_collider(ColliderBuilder::cuboid(20.0, 0.5, 20.0), Some(ground));
+        Scene {
+            world,
+            ground,
+            floor,
+        }
+    }
+
+    /// A dynamic unit cube whose centre is at `(x, y, 0)`, with collision events.
+    pub fn cube(&mut self, x: f32, y: f32) -> (RigidBodyHandle, ColliderHandle) {
+        let body = self
+            .world
+            .insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(x, y, 0.0)));
+        let collider = self.world.insert_collider(
+            ColliderBuilder::cuboid(0.5, 0.5, 0.5).active_events(ActiveEvents::COLLISION_EVENTS),
+            Some(body),
+        );
+        (body, collider)
+    }
+
+    pub fn y(&self, body: RigidBodyHandle) -> f32 {
+        self.world.bodies[body].translation().y
+    }
+
+    pub fn x(&self, body: RigidBodyHandle) -> f32 {
+        self.world.bodies[body].translation().x
+    }
+
+    pub fn touching(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
+        self.world
+            .narrow_phase
+            .contact_pair(a, b)
+            .is_some_and(|pair| pair.has_any_active_contact())
+    }
+}
+
+/// Collects collision events.
+pub struct Events {
+    pub collector: ChannelEventCollector,
+    receiver: Receiver<CollisionEvent>,
+    pub started: usize,
+    pub stopped: usize,
+    /// Only events about this collider are counted, if set.
+    pub about: Option<ColliderHandle>,
+}
+
+impl Events {
+    pub fn new() -> Events {
+        let (send, receiver) = channel();
+        let (force, _) = channel();
+        let (tear, _) = channel();
+        Events {
+            collector: ChannelEventCollector::new(send, force, tear),
+            receiver,
+            started: 0,
+            stopped: 0,
+            about: None,
+        }
+    }
+
+    pub fn drain(&mut self) {
+        while let Ok(event) = self.receiver.try_recv() {
+            if self
+                .about
+                .is_some_and(|c| c != event.collider1() && c != event.collider2())
+            {
+                continue;
+            }
+            if event.started() {
+                self.started += 1;
+            } else {
+                self.stopped += 1;
+            }
+        }
+    }
+}
+
+/// What one run of a resting cube with a rule against the ground measured.
+#[derive(Debug)]
+struct Outcome {
+    y: f32,
+    ever_touching: bool,
+    started: usize,
+    ever_live: bool,
+    live_rule: Option<CollisionRule>,
+}
+
+/// A cube resting on the ground (its bottom 1 cm into the slab), with `rule`
+/// as its personal rule, stepped for one second.
+fn resting_cube(rule: CollisionRule) -> Outcome {
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.49);
+    let mut rules = CollisionRuleSet::default();
+    rules.set_personal(body, rule);
+    let mut hooks = RuleHooks::new(rules);
+    let mut events = Events::new();
+    let (mut ever_touching, mut ever_live, mut live_rule) = (false, false, None);
+    for _ in 0..60 {
+        hooks.step_with_events(&mut scene.world, &events.collector);
+        events.drain();
+        ever_touching |= scene.touching(cube, scene.floor);
+        let live = hooks.pair_rule(cube, scene.floor);
+        ever_live |= live.is_some();
+        live_rule = live_rule.or(live);
+    }
+    Outcome {
+        y: scene.y(body),
+        ever_touching,
+        started: events.started,
+        ever_live,
+        live_rule,
+    }
+}
+
+#[test]
+fn normal_cube_rests_with_contacts_events_and_a_live_pair() {
+    let o = resting_cube(Normal);
+    assert!((o.y - 0.5).abs() < 0.05, "cube did not rest: {o:?}");
+    assert!(
+        o.ever_touching && o.started == 1,
+        "no contact or event: {o:?}"
+    );
+    assert_eq!(o.live_rule, Some(Normal), "{o:?}");
+}
+
+#[test]
+fn no_response_cube_falls_through_with_contacts_and_events() {
+    let o = resting_cube(NoResponse);
+    assert!(o.y < -3.0, "cube did not fall: {o:?}");
+    assert!(
+        o.ever_touching && o.started == 1,
+        "no contact or event: {o:?}"
+    );
+    assert_eq!(o.live_rule, Some(NoResponse), "{o:?}");
+}
+
+#[test]
+fn no_contacts_cube_falls_with_a_live_pair_and_nothing_else() {
+    let o = resting_cube(NoContacts);
+    assert!(o.y < -3.0, "cube did not fall: {o:?}");
+    assert!(
+        !o.ever_touching && o.started == 0,
+        "contacts or events: {o:?}"
+    );
+    assert_eq!(o.live_rule, Some(NoContacts), "{o:?}");
+}
+
+#[test]
+fn no_pair_cube_falls_with_no_live_pair() {
+    let o = resting_cube(NoPair);
+    assert!(o.y < -3.0, "cube did not fall: {o:?}");
+    assert!(
+        !o.ever_touching && o.started == 0,
+        "contacts or events: {o:?}"
+    );
+    assert!(!o.ever_live, "a NoPair pair was live: {o:?}");
+}
+
+#[test]
+fn sensors_follow_the_rule() {
+    for (rule, expect_events) in [
+        (Normal, true),
+        (NoResponse, true),
+        (NoContacts, false),
+        (NoPair, false),
+    ] {
+        let mut scene = Scene::new();
+        let zone_body = scene
+            .world
+            .insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, 3.0, 0.0)));
+        let zone = scene.world.insert_collider(
+            ColliderBuilder::cuboid(2.0, 1.0, 2.0)
+                .sensor(true)
+                .active_events(ActiveEvents::COLLISION_EVENTS),
+            Some(zone_body),
+        );
+        let (body, cube) = scene.cube(0.0, 6.0);
+        let mut rules = CollisionRuleSet::default();
+        rules.set_specific(zone, body, rule);
+        let mut hooks = RuleHooks::new(rules);
+        let mut events = Events::new();
+        events.about = Some(zone);
+        let mut intersected = false;
+        for _ in 0..90 {
+            hooks.step_with_events(&mut scene.world, &events.collector);
+            events.drain();
+            intersected |= scene.world.narrow_phase.intersection_pair(zone, cube) == Some(true);
+        }
+        assert_eq!(
+            (intersected, events.started > 0),
+            (expect_events, expect_events),
+            "{rule:?}: intersected {intersected}, started {} stopped {}",
+            events.started,
+            events.stopped
+        );
+        assert!(
+            (scene.y(body) - 0.5).abs() < 0.05,
+            "{rule:?}: cube did not land: y = {}",
+            scene.y(body)
+        );
+    }
+}
+
+/// A bullet fired at 200 m/s along +x at a thin wall at x = 5, without
+/// gravity; returns its x after 10 steps, and the x of the same bullet in a
+/// world without the wall.
+fn bullet(rule: CollisionRule, wall_kind: RigidBodyType, ccd: bool) -> (f32, f32) {
+    let run = |with_wall: bool| {
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::ZERO;
+        let body = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .linvel(Vector::new(200.0, 0.0, 0.0))
+                .ccd_enabled(ccd),
+        );
+        let shot = world.insert_collider(ColliderBuilder::ball(0.1), Some(body));
+        let mut rules = CollisionRuleSet::default();
+        if with_wall {
+            let wall = world.insert_body(
+                RigidBodyBuilder::new(wall_kind).translation(Vector::new(5.0, 0.0, 0.0)),
+            );
+            let plate = world.insert_collider(ColliderBuilder::cuboid(0.02, 3.0, 3.0), Some(wall));
+            rules.set_specific(plate, shot, rule);
+        }
+        let mut hooks = RuleHooks::new(rules);
+        for _ in 0..10 {
+            hooks.step(&mut world);
+        }
+        world.bodies[body].translation().x
+    };
+    (run(true), run(false))
+}
+
+#[test]
+fn ccd_bullets_pass_exactly_through_walls_that_do_not_respond() {
+    for wall in [RigidBodyType::Fixed, RigidBodyType::Dynamic] {
+        for ccd in [true, false] {
+            if !ccd && wall == RigidBodyType::Dynamic {
+                continue; // Without CCD nothing sweeps against a dynamic wall.
+            }
+            for rule in [NoResponse, NoContacts, NoPair] {
+                let (x, free) = bullet(rule, wall, ccd);
+                assert_eq!(
+                    x, free,
+                    "{rule:?} {wall:?} wall, ccd {ccd}: x = {x}, free flight {free}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn ccd_bullets_stop_at_normal_walls() {
+    for wall in [RigidBodyType::Fixed, RigidBodyType::Dynamic] {
+        let (x, free) = bullet(Normal, wall, true);
+        assert!(
+            x < 5.0 && free > 30.0,
+            "Normal {wall:?} wall: x = {x}, free flight {free}"
+        );
+    }
+}
+
+#[test]
+fn two_kinematic_bodies_with_a_normal_group_rule_touch_without_pushing() {
+    let mut world = PhysicsWorld::new();
+    let a = world.insert_body(
+        RigidBodyBuilder::kinematic_velocity_based().linvel(Vector::new(1.0, 0.0, 0.0)),
+    );
+    let b = world.insert_body(
+        RigidBodyBuilder::kinematic_velocity_based()
+            .translation(Vector::new(1.5, 0.0, 0.0))
+            .linvel(Vector::new(-1.0, 0.0, 0.0)),
+    );
+    let ca = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(a));
+    let cb = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(b));
+    let mut rules = CollisionRuleSet::default();
+    let k = CollisionGroup::DEFAULT_KINEMATIC;
+    rules.set_group_rule(k, k, Normal);
+    let mut hooks = RuleHooks::new(rules);
+    let mut touched = false;
+    for _ in 0..30 {
+        hooks.step(&mut world);
+        touched |= world
+            .narrow_phase
+            .contact_pair(ca, cb)
+            .is_some_and(|p| p.has_any_active_contact());
+    }
+    let (xa, xb) = (
+        world.bodies[a].translation().x,
+        world.bodies[b].translation().x,
+    );
+    assert!(touched, "the platforms never had contacts");
+    assert!(
+        (xa - 0.5).abs() < 1e-4 && (xb - 1.0).abs() < 1e-4,
+        "a platform was pushed: {xa} {xb}"
+    );
+    assert_eq!(hooks.pair_rule(ca, cb), Some(NoResponse));
+}
+
+#[test]
+fn kinematic_bodies_by_default_form_no_pair() {
+    let mut world = PhysicsWorld::new();
+    let a = world.insert_body(RigidBodyBuilder::kinematic_position_based());
+    let b = world.insert_body(
+        RigidBodyBuilder::kinematic_position_based().translation(Vector::new(0.5, 0.0, 0.0)),
+    );
+    let ca = world.insert_collider(ColliderBuilder::ball(0.5), Some(a));
+    let cb = world.insert_collider(ColliderBuilder::ball(0.5), Some(b));
+    let mut hooks = RuleHooks::default();
+    for _ in 0..5 {
+        hooks.step(&mut world);
+    }
+    let touching = world
+        .narrow_phase
+        .contact_pair(ca, cb)
+        .is_some_and(|p| p.has_any_active_contact());
+    assert!(
+        !touching && hooks.pair_rule(ca, cb).is_none(),
+        "kinematic pair: touching {touching}"
+    );
+}
+
+/// A cube that has fallen asleep on the ground, and hooks with `policy`.
+fn sleeping_cube(
+    policy: RecalculationPolicy,
+) -> (Scene, RuleHooks, RigidBodyHandle, ColliderHandle) {
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.5);
+    let mut hooks = RuleHooks::default();
+    hooks.set_policy(policy);
+    for _ in 0..300 {
+        hooks.step(&mut scene.world);
+    }
+    assert!(
+        scene.world.bodies[body].is_sleeping(),
+        "the cube did not fall asleep"
+    );
+    (scene, hooks, body, cube)
+}
+
+fn run(scene: &mut Scene, hooks: &mut RuleHooks, steps: usize) {
+    for _ in 0..steps {
+        hooks.step(&mut scene.world);
+    }
+}
+
+#[test]
+fn on_change_applies_an_edit_to_a_sleeping_pair() {
+    let (mut scene, mut hooks, body, cube) = sleeping_cube(RecalculationPolicy::OnChange);
+    hooks.rules_mut().set_personal(body, NoResponse);
+    run(&mut scene, &mut hooks, 60);
+    assert_eq!(
+        hooks.pair_rule(cube, scene.floor),
+        None,
+        "the pair outlived the fall"
+    );
+    assert!(
+        scene.y(body) < -3.0,
+        "the edit did not reach the sleeping cube: y = {}",
+        scene.y(body)
+    );
+}
+
+#[test]
+fn manual_waits_for_force_recalculation() {
+    let (mut scene, mut hooks, body, cube) = sleeping_cube(RecalculationPolicy::Manual);
+    hooks.rules_mut().set_personal(body, NoResponse);
+    run(&mut scene, &mut hooks, 60);
+    assert_eq!(hooks.pair_rule(cube, scene.floor), Some(Normal));
+    assert!(
+        (scene.y(body) - 0.5).abs() < 0.05,
+        "the edit applied without a recalculation: y = {}",
+        scene.y(body)
+    );
+    hooks.force_recalculation(body);
+    run(&mut scene, &mut hooks, 60);
+    assert!(
+        scene.y(body) < -3.0,
+        "force_recalculation did not apply: y = {}",
+        scene.y(body)
+    );
+}
+
+#[test]
+fn manual_gives_new_pairs_the_current_rules() {
+    let mut scene = Scene::new();
+    let mut hooks = RuleHooks::default();
+    hooks.set_policy(RecalculationPolicy::Manual);
+    let (body, _) = scene.cube(0.0, 3.0);
+    hooks.rules_mut().set_personal(body, NoContacts);
+    run(&mut scene, &mut hooks, 90);
+    assert!(
+        scene.y(body) < -3.0,
+        "the new pair ignored the edit: y = {}",
+        scene.y(body)
+    );
+}
+
+#[test]
+fn every_step_follows_a_calculator_reading_outside_state() {
+    let mut scene = Scene::new();
+    let (body, _) = scene.cube(0.0, 0.5);
+    let open = Arc::new(AtomicBool::new(false));
+    let mut hooks = RuleHooks::default();
+    hooks.set_policy(RecalculationPolicy::EveryStep);
+    let trapdoor = Arc::clone(&open);
+    hooks.set_calculator(move |ctx| {
+        if trapdoor.load(Ordering::Relaxed) {
+            NoContacts
+        } else {
+            ctx.default_rule()
+        }
+    });
+    run(&mut scene, &mut hooks, 30);
+    let resting = scene.y(body);
+    open.store(true, Ordering::Relaxed);
+    run(&mut scene, &mut hooks, 60);
+    assert!(
+        (resting - 0.5).abs() < 0.05 && scene.y(body) < -3.0,
+        "rested at {resting}, ended at {}",
+        scene.y(body)
+    );
+}
+
+#[test]
+fn pair_overrides_last_until_forced() {
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.5);
+    let (other, _) = scene.cube(3.0, 0.5);
+    let mut hooks = RuleHooks::default();
+    run(&mut scene, &mut hooks, 5);
+    assert!(
+        hooks.set_pair_rule(scene.floor, cube, NoResponse),
+        "the pair was not live"
+    );
+    assert_eq!(hooks.pair_rule(cube, scene.floor), Some(NoResponse));
+    // An edit elsewhere does not undo the override.
+    hooks.rules_mut().set_personal(other, NoResponse);
+    run(&mut scene, &mut hooks, 2);
+    assert_eq!(hooks.pair_rule(cube, scene.floor), Some(NoResponse));
+    hooks.force_recalculation(body);
+    run(&mut scene, &mut hooks, 1);
+    assert_eq!(
+        hooks.pair_rule(cube, scene.floor),
+        Some(Normal),
+        "force_recalculation kept the override"
+    );
+    assert!(!hooks.set_pair_rule(cube, ColliderHandle::invalid(), Normal));
+}
+
+#[test]
+fn a_pair_override_to_no_response_lets_the_cube_fall() {
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.5);
+    let mut hooks = RuleHooks::default();
+    run(&mut scene, &mut hooks, 5);
+    hooks.set_pair_rule(cube, scene.floor, NoResponse);
+    run(&mut scene, &mut hooks, 60);
+    assert!(scene.y(body) < -3.0, "y = {}", scene.y(body));
+}
+
+#[test]
+fn the_created_callback_replaces_the_rule_before_any_contact() {
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.49);
+    let calls = Arc::new(AtomicUsize::new(0));
+    let counter = Arc::clone(&calls);
+    let floor = scene.floor;
+    let mut hooks = RuleHooks::default();
+    hooks.on_pair_created(move |pair| {
+        counter.fetch_add(1, Ordering::Relaxed);
+        assert_eq!(pair.rule, Normal);
+        let with_floor = pair.collider1 == floor || pair.collider2 == floor;
+        with_floor.then_some(NoResponse)
+    });
+    let mut touched = false;
+    for _ in 0..60 {
+        hooks.step(&mut scene.world);
+        touched |= scene
+            .world
+            .narrow_phase
+            .contact_pair(cube, floor)
+            .is_some_and(|p| p.has_any_active_contact());
+    }
+    let n = calls.load(Ordering::Relaxed);
+    assert!(
+        scene.y(body) < -3.0 && touched,
+        "y = {}, touched {touched}",
+        scene.y(body)
+    );
+    assert_eq!(n, 1, "the callback ran {n} times for one pair");
+}
+
+#[test]
+fn a_calculator_can_replace_or_delegate() {
+    let mut scene = Scene::new();
+    let (a, ca) = scene.cube(0.0, 0.5);
+    let (b, cb) = scene.cube(3.0, 0.5);
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_personal(b, NoResponse);
+    hooks.set_calculator(move |ctx| {
+        if ctx.collider1 == ca || ctx.collider2 == ca {
+            NoContacts
+        } else {
+            ctx.default_rule()
+        }
+    });
+    run(&mut scene, &mut hooks, 60);
+    let (ya, yb) = (scene.y(a), scene.y(b));
+    assert!(ya < -3.0 && yb < -3.0, "ya = {ya}, yb = {yb}");
+    assert_eq!(
+        hooks
+            .pairs()
+            .filter(|&(x, y, _)| x == cb || y == cb)
+            .count(),
+        0
+    );
+}
+
+#[test]
+fn always_computes_contacts_without_response() {
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.49);
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_personal(body, NoContacts);
+    hooks.set_policy(RecalculationPolicy::Manual);
+    run(&mut scene, &mut hooks, 1);
+    assert!(hooks.set_manifold_update(cube, scene.floor, ManifoldUpdate::Always));
+    let mut touched = false;
+    for _ in 0..60 {
+        hooks.step(&mut scene.world);
+        touched |= scene.touching(cube, scene.floor);
+    }
+    assert!(
+        touched && scene.y(body) < -3.0,
+        "touched {touched}, y = {}",
+        scene.y(body)
+    );
+}
+
+#[test]
+fn never_keeps_the_contacts_of_the_moment_it_was_set() {
+    // Set while apart (the pair exists, no contacts yet): the cube falls through.
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.6);
+    let mut hooks = RuleHooks::default();
+    let mut frozen_apart = false;
+    for _ in 0..30 {
+        hooks.step(&mut scene.world);
+        if hooks.pair_rule(cube, scene.floor).is_some() && !scene.touching(cube, scene.floor) {
+            frozen_apart = hooks.set_manifold_update(cube, scene.floor, ManifoldUpdate::Never);
+            break;
+        }
+    }
+    assert!(
+        frozen_apart,
+        "never saw the pair live and apart: y = {}",
+        scene.y(body)
+    );
+    run(&mut scene, &mut hooks, 60);
+    assert!(
+        scene.y(body) < 0.0,
+        "frozen without contacts, the cube stopped: y = {}",
+        scene.y(body)
+    );
+
+    // Set while resting: the cube keeps resting on the frozen contacts.
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.5);
+    let mut hooks = RuleHooks::default();
+    run(&mut scene, &mut hooks, 20);
+    assert!(hooks.set_manifold_update(cube, scene.floor, ManifoldUpdate::Never));
+    run(&mut scene, &mut hooks, 60);
+    assert!(
+        (scene.y(body) - 0.5).abs() < 0.05,
+        "the frozen contacts did not hold: y = {}",
+        scene.y(body)
+    );
+    assert_eq!(
+        hooks.manifold_update(cube, scene.floor),
+        Some(ManifoldUpdate::Never)
+    );
+}
+
+#[test]
+fn removal_through_rapier_is_noticed_and_reused_handles_start_clean() {
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.5);
+    let mut hooks = RuleHooks::default();
+    hooks
+        .rules_mut()
+        .set_specific(scene.ground, body, NoResponse);
+    hooks.rules_mut().set_personal(cube, NoResponse);
+    run(&mut scene, &mut hooks, 2);
+    scene.world.remove_body(body);
+    run(&mut scene, &mut hooks, 1);
+    assert_eq!(
+        hooks.pairs().count(),
+        0,
+        "a pair of a removed collider survived"
+    );
+    assert_eq!(
+        hooks.rules().specific(scene.ground, body),
+        Defer,
+        "an entry about a removed body survived"
+    );
+    assert_eq!(hooks.rules().personal(cube), Defer);
+    let (new_body, new_cube) = scene.cube(0.0, 0.5);
+    assert_eq!(
+        new_cube.into_raw_parts().0,
+        cube.into_raw_parts().0,
+        "Rapier did not reuse the slot"
+    );
+    run(&mut scene, &mut hooks, 30);
+    assert_eq!(hooks.pair_rule(new_cube, scene.floor), Some(Normal));
+    assert!(
+        (scene.y(new_body) - 0.5).abs() < 0.05,
+        "y = {}",
+        scene.y(new_body)
+    );
+}
+
+#[test]
+fn a_ragdoll_ignores_itself_and_lands_on_the_world() -> Result<(), RuleError> {
+    let mut scene = Scene::new();
+    // Three overlapping limbs: plain Rapier would push them apart.
+    let (pelvis, p) = scene.cube(0.0, 3.0);
+    let (thigh, t) = scene.cube(0.3, 3.0);
+    let (shin, s) = scene.cube(0.6, 3.0);
+    let mut rules = CollisionRuleSet::default();
+    let ragdoll = rules.create_group();
+    rules.set_group_rule(ragdoll, ragdoll, NoPair);
+    rules.set_group(pelvis, Some(ragdoll));
+    rules.set_parent(thigh, pelvis)?;
+    rules.set_parent(shin, thigh)?;
+    let mut hooks = RuleHooks::new(rules);
+    run(&mut scene, &mut hooks, 120);
+    for (limb, x0) in [(pelvis, 0.0), (thigh, 0.3), (shin, 0.6)] {
+        let (x, y) = (scene.x(limb), scene.y(limb));
+        assert!(
+            (x - x0).abs() < 0.02 && (y - 0.5).abs() < 0.05,
+            "limb landed at ({x}, {y})"
+        );
+    }
+    for (a, b) in [(p, t), (t, s), (p, s)] {
+        assert_eq!(hooks.pair_rule(a, b), None, "limbs formed a live pair");
+    }
+    assert_eq!(hooks.pair_rule(s, scene.floor), Some(Normal));
+    Ok(())
+}

@@ -3,6 +3,7 @@
 
 mod alloc;
 mod errors;
+mod live;
 mod properties;
 mod reference;
 mod scenes;

@@ -676,3 +676,89 @@ fn a_ragdoll_ignores_itself_and_lands_on_the_world() -> Result<(), RuleError> {
     assert_eq!(hooks.pair_rule(s, scene.floor), Some(Normal));
     Ok(())
 }
+
+/// A cube dropped from y = 2 through the ground and a dynamic cube lying in
+/// its path; returns the cube's y after each of 90 steps.
+fn dropped_cube(rule: Option<CollisionRule>) -> Vec<f32> {
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 2.0);
+    let mut rules = CollisionRuleSet::default();
+    if let Some(rule) = rule {
+        let (_, obstacle) = scene.cube(0.2, 0.5);
+        rules.set_specific(cube, scene.floor, rule);
+        rules.set_specific(cube, obstacle, rule);
+    } else {
+        scene.world.remove_collider(scene.floor);
+    }
+    let mut hooks = RuleHooks::new(rules);
+    (0..90)
+        .map(|_| {
+            hooks.step(&mut scene.world);
+            scene.y(body)
+        })
+        .collect()
+}
+
+#[test]
+fn a_body_that_does_not_respond_moves_as_if_the_others_were_absent() {
+    let alone = dropped_cube(None);
+    for rule in [NoResponse, NoContacts, NoPair] {
+        let path = dropped_cube(Some(rule));
+        assert_eq!(
+            path,
+            alone,
+            "{rule:?}: the path differs from free fall (ends {:?} vs {:?})",
+            path.last(),
+            alone.last()
+        );
+    }
+}
+
+#[test]
+fn a_bare_pipeline_with_prepare_and_after_step_matches_step() {
+    let build = || {
+        let mut scene = Scene::new();
+        let (a, _) = scene.cube(0.0, 1.0);
+        let (b, _) = scene.cube(0.3, 2.5);
+        let mut rules = CollisionRuleSet::default();
+        rules.set_specific(a, b, NoResponse);
+        (scene, RuleHooks::new(rules), a, b)
+    };
+    let (mut stepped, mut hooks1, a, b) = build();
+    let (mut bare, mut hooks2, _, _) = build();
+    for _ in 0..60 {
+        hooks1.step(&mut stepped.world);
+        let w = &mut bare.world;
+        hooks2.prepare(&w.bodies, &mut w.colliders);
+        hooks2.wake_edited(&mut w.islands, &mut w.bodies);
+        w.physics_pipeline.step(
+            w.gravity,
+            &w.integration_parameters,
+            &mut w.islands,
+            &mut w.broad_phase,
+            &mut w.narrow_phase,
+            &mut w.bodies,
+            &mut w.colliders,
+            &mut w.impulse_joints,
+            &mut w.multibody_joints,
+            &mut w.soft_bodies,
+            &mut w.ccd_solver,
+            &hooks2,
+            &(),
+        );
+        hooks2.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
+    }
+    for body in [a, b] {
+        assert_eq!(stepped.y(body), bare.y(body), "the bare pipeline diverged");
+    }
+    let live = |hooks: &RuleHooks| {
+        let mut pairs: Vec<_> = hooks
+            .pairs()
+            .map(|(x, y, r)| (x.into_raw_parts(), y.into_raw_parts(), r))
+            .collect();
+        pairs.sort();
+        pairs
+    };
+    assert_eq!(live(&hooks1), live(&hooks2));
+    assert!(!live(&hooks1).is_empty());
+}

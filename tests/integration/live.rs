@@ -1,0 +1,224 @@
+//! Random edit sequences while stepping real worlds: after every step, each
+//! live pair's rule equals a fresh `resolve` (policy `OnChange`, no
+//! overrides), every pair in Rapier's graph is known to the hooks, and no
+//! live pair names a removed collider.
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngSeed};
+use rapier_collision_rules::{CollisionGroup, CollisionRule, Node, RuleHooks};
+use rapier3d::prelude::*;
+
+#[derive(Clone, Debug)]
+enum Edit {
+    Personal(usize, CollisionRule),
+    Group(usize, Option<usize>),
+    Specific(usize, usize, CollisionRule),
+    GroupRule(usize, usize, CollisionRule),
+    Parent(usize, usize),
+    Unparent(usize),
+    Share(usize, usize),
+    DefaultRule(CollisionRule),
+    Kind(usize, usize),
+    RemoveCollider(usize),
+    RemoveBody(usize),
+    AddCube(f32, f32, usize),
+    Step(usize),
+}
+
+const KINDS: [RigidBodyType; 3] = [
+    RigidBodyType::Dynamic,
+    RigidBodyType::KinematicPositionBased,
+    RigidBodyType::Fixed,
+];
+const GROUPS: usize = 4;
+
+fn rule() -> impl Strategy<Value = CollisionRule> {
+    proptest::sample::select(CollisionRule::ALL.to_vec())
+}
+
+fn edit() -> impl Strategy<Value = Edit> {
+    let n = 0..64usize;
+    prop_oneof![
+        3 => (n.clone(), rule()).prop_map(|(x, r)| Edit::Personal(x, r)),
+        2 => (n.clone(), proptest::option::of(0..GROUPS)).prop_map(|(x, g)| Edit::Group(x, g)),
+        3 => (n.clone(), n.clone(), rule()).prop_map(|(x, y, r)| Edit::Specific(x, y, r)),
+        2 => (0..GROUPS, 0..GROUPS, rule()).prop_map(|(a, b, r)| Edit::GroupRule(a, b, r)),
+        2 => (n.clone(), n.clone()).prop_map(|(c, p)| Edit::Parent(c, p)),
+        1 => n.clone().prop_map(Edit::Unparent),
+        1 => (n.clone(), n.clone()).prop_map(|(a, b)| Edit::Share(a, b)),
+        1 => rule().prop_map(Edit::DefaultRule),
+        1 => (n.clone(), 0..KINDS.len()).prop_map(|(b, k)| Edit::Kind(b, k)),
+        1 => n.clone().prop_map(Edit::RemoveCollider),
+        1 => n.clone().prop_map(Edit::RemoveBody),
+        2 => (-1.5f32..1.5, 0.4f32..3.0, 0..KINDS.len()).prop_map(|(x, y, k)| Edit::AddCube(x, y, k)),
+        6 => (1..4usize).prop_map(Edit::Step),
+    ]
+}
+
+struct Run {
+    world: PhysicsWorld,
+    hooks: RuleHooks,
+    groups: Vec<CollisionGroup>,
+    bodies: Vec<RigidBodyHandle>,
+    colliders: Vec<ColliderHandle>,
+    removed: Vec<ColliderHandle>,
+}
+
+impl Run {
+    fn new(cubes: &[(f32, f32, usize)]) -> Run {
+        let mut world = PhysicsWorld::new();
+        let ground =
+            world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+        let floor = world.insert_collider(ColliderBuilder::cuboid(5.0, 0.5, 5.0), Some(ground));
+        let mut hooks = RuleHooks::default();
+        let mut groups = vec![
+            CollisionGroup::DEFAULT_DYNAMIC,
+            CollisionGroup::DEFAULT_KINEMATIC,
+        ];
+        groups.extend((2..GROUPS).map(|_| hooks.rules_mut().create_group()));
+        let mut run = Run {
+            world,
+            hooks,
+            groups,
+            bodies: vec![ground],
+            colliders: vec![floor],
+            removed: Vec::new(),
+        };
+        for &(x, y, kind) in cubes {
+            run.add_cube(x, y, kind);
+        }
+        run
+    }
+
+    fn add_cube(&mut self, x: f32, y: f32, kind: usize) {
+        let body = self
+            .world
+            .insert_body(RigidBodyBuilder::new(KINDS[kind]).translation(Vector::new(x, y, 0.0)));
+        let collider = self
+            .world
+            .insert_collider(ColliderBuilder::cuboid(0.4, 0.4, 0.4), Some(body));
+        self.bodies.push(body);
+        self.colliders.push(collider);
+    }
+
+    fn node(&self, i: usize) -> Node {
+        let i = i % (self.bodies.len() + self.colliders.len());
+        match i.checked_sub(self.bodies.len()) {
+            None => Node::Body(self.bodies[i]),
+            Some(c) => Node::Collider(self.colliders[c]),
+        }
+    }
+
+    fn body(&self, i: usize) -> RigidBodyHandle {
+        self.bodies[i % self.bodies.len()]
+    }
+
+    fn apply(&mut self, edit: &Edit) {
+        let groups = self.groups.clone();
+        match *edit {
+            Edit::Personal(x, r) => {
+                let node = self.node(x);
+                self.hooks.rules_mut().set_personal(node, r);
+            }
+            Edit::Group(x, g) => {
+                let node = self.node(x);
+                self.hooks.rules_mut().set_group(node, g.map(|g| groups[g]));
+            }
+            Edit::Specific(x, y, r) => {
+                let (node, other) = (self.node(x), self.node(y));
+                self.hooks.rules_mut().set_specific(node, other, r);
+            }
+            Edit::GroupRule(a, b, r) => self
+                .hooks
+                .rules_mut()
+                .set_group_rule(groups[a], groups[b], r),
+            Edit::Parent(c, p) => {
+                let (child, parent) = (self.body(c), self.body(p));
+                let _ = self.hooks.rules_mut().set_parent(child, parent);
+            }
+            Edit::Unparent(c) => {
+                let child = self.body(c);
+                self.hooks.rules_mut().remove_parent(child);
+            }
+            Edit::Share(a, b) => {
+                let (from, to) = (self.node(a), self.node(b));
+                self.hooks.rules_mut().share_rules(from, to);
+            }
+            Edit::DefaultRule(r) => self.hooks.rules_mut().set_default_rule(r),
+            Edit::Kind(b, k) => {
+                let handle = self.body(b);
+                if let Some(body) = self.world.bodies.get_mut(handle) {
+                    body.set_body_type(KINDS[k], true);
+                }
+            }
+            Edit::RemoveCollider(c) => {
+                let handle = self.colliders[c % self.colliders.len()];
+                if self.world.remove_collider(handle).is_some() {
+                    self.removed.push(handle);
+                }
+            }
+            Edit::RemoveBody(b) => {
+                let handle = self.body(b);
+                if let Some(body) = self.world.remove_body(handle) {
+                    self.removed.extend_from_slice(body.colliders());
+                }
+            }
+            Edit::AddCube(x, y, kind) => self.add_cube(x, y, kind),
+            Edit::Step(n) => {
+                for _ in 0..n {
+                    self.hooks.step(&mut self.world);
+                    self.check();
+                }
+            }
+        }
+    }
+
+    fn check(&self) {
+        let (bodies, colliders) = (&self.world.bodies, &self.world.colliders);
+        let rules = self.hooks.rules();
+        for (a, b, rule) in self.hooks.pairs() {
+            assert!(
+                colliders.contains(a) && colliders.contains(b),
+                "live pair ({a:?}, {b:?}) names a removed collider"
+            );
+            let fresh = rules.resolve(bodies, colliders, a, b);
+            assert_eq!(rule, fresh, "live pair ({a:?}, {b:?}) is stale");
+            assert_ne!(rule, CollisionRule::NoPair);
+        }
+        for pair in self.world.narrow_phase.contact_pairs() {
+            let (a, b) = (pair.collider1, pair.collider2);
+            let expected = Some(rules.resolve(bodies, colliders, a, b))
+                .filter(|&r| r != CollisionRule::NoPair);
+            assert_eq!(
+                self.hooks.pair_rule(a, b),
+                expected,
+                "Rapier's pair ({a:?}, {b:?})"
+            );
+        }
+        for &gone in &self.removed {
+            assert!(self.hooks.pairs().all(|(a, b, _)| a != gone && b != gone));
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(Config {
+        cases: 96,
+        rng_seed: RngSeed::Fixed(0x11fe_9a11),
+        failure_persistence: None,
+        ..Config::default()
+    })]
+
+    #[test]
+    fn live_pairs_follow_every_edit(
+        cubes in proptest::collection::vec((-1.5f32..1.5, 0.4f32..3.0, 0..KINDS.len()), 2..8),
+        edits in proptest::collection::vec(edit(), 1..40),
+    ) {
+        let mut run = Run::new(&cubes);
+        run.apply(&Edit::Step(1));
+        for edit in &edits {
+            run.apply(edit);
+        }
+        run.apply(&Edit::Step(2));
+    }
+}

@@ -109,6 +109,7 @@ struct Outcome {
     y: f32,
     ever_touching: bool,
     started: usize,
+    stopped: usize,
     ever_live: bool,
     live_rule: Option<CollisionRule>,
 }
@@ -135,6 +136,7 @@ fn resting_cube(rule: CollisionRule) -> Outcome {
         y: scene.y(body),
         ever_touching,
         started: events.started,
+        stopped: events.stopped,
         ever_live,
         live_rule,
     }

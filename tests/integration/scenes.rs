@@ -147,7 +147,7 @@ fn normal_cube_rests_with_contacts_events_and_a_live_pair() {
     let o = resting_cube(Normal);
     assert!((o.y - 0.5).abs() < 0.05, "cube did not rest: {o:?}");
     assert!(
-        o.ever_touching && o.started == 1,
+        o.ever_touching && (o.started, o.stopped) == (1, 0),
         "no contact or event: {o:?}"
     );
     assert_eq!(o.live_rule, Some(Normal), "{o:?}");
@@ -158,7 +158,7 @@ fn no_response_cube_falls_through_with_contacts_and_events() {
     let o = resting_cube(NoResponse);
     assert!(o.y < -3.0, "cube did not fall: {o:?}");
     assert!(
-        o.ever_touching && o.started == 1,
+        o.ever_touching && (o.started, o.stopped) == (1, 1),
         "no contact or event: {o:?}"
     );
     assert_eq!(o.live_rule, Some(NoResponse), "{o:?}");
@@ -169,7 +169,7 @@ fn no_contacts_cube_falls_with_a_live_pair_and_nothing_else() {
     let o = resting_cube(NoContacts);
     assert!(o.y < -3.0, "cube did not fall: {o:?}");
     assert!(
-        !o.ever_touching && o.started == 0,
+        !o.ever_touching && (o.started, o.stopped) == (0, 0),
         "contacts or events: {o:?}"
     );
     assert_eq!(o.live_rule, Some(NoContacts), "{o:?}");
@@ -180,7 +180,7 @@ fn no_pair_cube_falls_with_no_live_pair() {
     let o = resting_cube(NoPair);
     assert!(o.y < -3.0, "cube did not fall: {o:?}");
     assert!(
-        !o.ever_touching && o.started == 0,
+        !o.ever_touching && (o.started, o.stopped) == (0, 0),
         "contacts or events: {o:?}"
     );
     assert!(!o.ever_live, "a NoPair pair was live: {o:?}");

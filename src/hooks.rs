@@ -7,6 +7,7 @@ use std::sync::{Mutex, PoisonError};
 use hashbrown::{HashMap, HashSet};
 use rapier3d::prelude::*;
 
+use crate::native::{self, Plan};
 use crate::node::HandleMap;
 use crate::pairs::{self, ManifoldUpdate, PairKey, PairState, PairTable};
 use crate::resolve::special_case;
@@ -123,9 +124,20 @@ pub struct RuleHooks {
     /// A calculator or callback changed: every pair is to be recalculated.
     recalculate_all: bool,
     to_wake: Vec<RigidBodyHandle>,
-    /// Colliders given the contact-modification flag for `ManifoldUpdate::Never`.
-    modifying: HashSet<ColliderHandle>,
-    manifolds_changed: bool,
+    /// Whether the planner may leave colliders unhooked (see `native.rs`).
+    planner: bool,
+    plan: Plan,
+    /// Something the plan depends on changed: plan again before the next step.
+    replan: bool,
+    /// Colliders the last plan hooked that were native before: their pairs
+    /// in Rapier's graph are taken into the table after the step.
+    newly_hooked: Vec<ColliderHandle>,
+    /// Rapier's pairs whose colliders are both native, as of the last step:
+    /// their rules follow from the colliders' classes.
+    native_pairs: Vec<PairKey>,
+    /// Colliders whose groups the last plan changed. Rapier drops and finds
+    /// their pairs again, so their table entries outlive one absence.
+    regrouped: HashSet<ColliderHandle>,
 }
 
 impl std::fmt::Debug for RuleHooks {
@@ -161,8 +173,12 @@ impl RuleHooks {
             forced: Vec::new(),
             recalculate_all: false,
             to_wake: Vec::new(),
-            modifying: HashSet::new(),
-            manifolds_changed: false,
+            planner: true,
+            plan: Plan::default(),
+            replan: true,
+            newly_hooked: Vec::new(),
+            native_pairs: Vec::new(),
+            regrouped: HashSet::new(),
         }
     }
 
@@ -181,6 +197,38 @@ impl RuleHooks {
     /// Chooses when live pairs follow rule edits (default `OnChange`).
     pub fn set_policy(&mut self, policy: RecalculationPolicy) {
         self.policy = policy;
+        self.replan = true;
+    }
+
+    /// Turns the planner on (the default) or off. On, colliders whose pairs
+    /// Rapier can decide itself get collision and solver groups instead of
+    /// the hook flag, which keeps Rapier's contact recycling; off, every
+    /// collider is hooked (for comparison and debugging). The planner also
+    /// stands aside while a calculator or a pair-created callback is
+    /// registered or the policy is `Manual`: those need every pair to pass
+    /// the hook.
+    ///
+    /// The crate owns the collision groups, solver groups, active hooks and
+    /// active collision types of every collider of the worlds it steps.
+    pub fn set_planner(&mut self, enabled: bool) {
+        self.planner = enabled;
+        self.replan = true;
+    }
+
+    /// Whether the planner is on (see [`set_planner`](Self::set_planner)).
+    #[must_use]
+    pub fn planner(&self) -> bool {
+        self.planner
+    }
+
+    /// How many colliders carry the hook flag as of the last plan.
+    #[must_use]
+    pub fn hooked_count(&self) -> usize {
+        self.plan
+            .colliders
+            .iter()
+            .filter(|(_, p)| p.hooked())
+            .count()
     }
 
     /// The current recalculation policy.
@@ -209,12 +257,14 @@ impl RuleHooks {
     ) {
         self.calculator = Some(Box::new(calculator));
         self.recalculate_all = true;
+        self.replan = true;
     }
 
     /// Goes back to the default calculation.
     pub fn remove_calculator(&mut self) {
         self.calculator = None;
         self.recalculate_all = true;
+        self.replan = true;
     }
 
     /// Registers the pair-created callback (seed's immediate events): it
@@ -238,12 +288,14 @@ impl RuleHooks {
     ) {
         self.on_created = Some(Box::new(callback));
         self.recalculate_all = true;
+        self.replan = true;
     }
 
     /// Removes the pair-created callback.
     pub fn remove_pair_created(&mut self) {
         self.on_created = None;
         self.recalculate_all = true;
+        self.replan = true;
     }
 }
 
@@ -253,20 +305,32 @@ impl RuleHooks {
     /// they form no live pair (a `NoPair` pair is not live).
     #[must_use]
     pub fn pair_rule(&self, a: ColliderHandle, b: ColliderHandle) -> Option<CollisionRule> {
-        self.pairs
-            .get(PairKey::new(a, b))
-            .map(PairState::rule)
-            .filter(|&rule| rule != CollisionRule::NoPair)
+        let key = PairKey::new(a, b);
+        match self.pairs.get(key) {
+            Some(state) => Some(state.rule()),
+            None => self
+                .native_rule(key)
+                .filter(|_| self.native_pairs.contains(&key)),
+        }
+        .filter(|&rule| rule != CollisionRule::NoPair)
     }
 
     /// Every live pair with its rule, in no particular order.
     pub fn pairs(
         &self,
     ) -> impl Iterator<Item = (ColliderHandle, ColliderHandle, CollisionRule)> + '_ {
-        self.pairs.iter().filter_map(|(key, state)| {
+        let hooked = self
+            .pairs
+            .iter()
+            .map(|(key, state)| (key, Some(state.rule())));
+        let native = self
+            .native_pairs
+            .iter()
+            .map(|&key| (key, self.native_rule(key)));
+        hooked.chain(native).filter_map(|(key, rule)| {
             let (a, b) = key.colliders();
-            let rule = state.rule();
-            (rule != CollisionRule::NoPair).then_some((a, b, rule))
+            rule.filter(|&r| r != CollisionRule::NoPair)
+                .map(|r| (a, b, r))
         })
     }
 
@@ -281,13 +345,11 @@ impl RuleHooks {
         b: ColliderHandle,
         rule: CollisionRule,
     ) -> bool {
-        let Some(state) = self.pairs.get_mut(PairKey::new(a, b)) else {
+        let Some(state) = self.live_state(a, b) else {
             return false;
         };
-        if state.rule() == CollisionRule::NoPair {
-            return false;
-        }
         state.overridden = rule.is_decided().then_some(rule);
+        self.replan = true;
         self.wake_pair(a, b);
         true
     }
@@ -300,18 +362,15 @@ impl RuleHooks {
         b: ColliderHandle,
         update: ManifoldUpdate,
     ) -> bool {
-        let Some(state) = self.pairs.get_mut(PairKey::new(a, b)) else {
+        let Some(state) = self.live_state(a, b) else {
             return false;
         };
-        if state.rule() == CollisionRule::NoPair {
-            return false;
-        }
         state.manifold = update;
         *state
             .frozen
             .get_mut()
             .unwrap_or_else(PoisonError::into_inner) = None;
-        self.manifolds_changed = true;
+        self.replan = true;
         self.wake_pair(a, b);
         true
     }
@@ -319,10 +378,10 @@ impl RuleHooks {
     /// The manifold setting of the live pair of `a` and `b`.
     #[must_use]
     pub fn manifold_update(&self, a: ColliderHandle, b: ColliderHandle) -> Option<ManifoldUpdate> {
-        self.pairs
-            .get(PairKey::new(a, b))
-            .filter(|state| state.rule() != CollisionRule::NoPair)
-            .map(|state| state.manifold)
+        match self.pairs.get(PairKey::new(a, b)) {
+            Some(state) => (state.rule() != CollisionRule::NoPair).then_some(state.manifold),
+            None => self.pair_rule(a, b).map(|_| ManifoldUpdate::ByRule),
+        }
     }
 
     /// Recalculates, before the next step, every live pair of `node` and of
@@ -330,6 +389,26 @@ impl RuleHooks {
     /// their overrides. A pair that becomes `NoPair` stops being live.
     pub fn force_recalculation(&mut self, node: impl Into<Node>) {
         self.forced.push(node.into());
+    }
+
+    /// The rule of a pair of two native colliders, from their classes.
+    fn native_rule(&self, key: PairKey) -> Option<CollisionRule> {
+        let (a, b) = key.colliders();
+        let class = |c| self.plan.colliders.get(c).and_then(|p| p.class);
+        Some(native::class_rule(&self.rules, class(a)?, class(b)?))
+    }
+
+    /// The table entry of a live pair; a native pair gets one made from its
+    /// native rule (and is hooked from the next step on).
+    fn live_state(&mut self, a: ColliderHandle, b: ColliderHandle) -> Option<&mut PairState> {
+        let key = PairKey::new(a, b);
+        if self.pairs.get(key).is_none() && self.native_pairs.contains(&key) {
+            let rule = self.native_rule(key)?;
+            self.pairs.insert(key, PairState::new(rule, self.step));
+        }
+        self.pairs
+            .get_mut(key)
+            .filter(|state| state.rule() != CollisionRule::NoPair)
     }
 
     fn wake_pair(&mut self, a: ColliderHandle, b: ColliderHandle) {
@@ -349,23 +428,29 @@ impl RuleHooks {
     /// [`step`](Self::step), with Rapier's events sent to `events`.
     pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
         self.prepare(&world.bodies, &mut world.colliders);
+        self.freeze_manifolds(&world.narrow_phase);
         self.wake_edited(&mut world.islands, &mut world.bodies);
         world.step_with_events(&*self, events);
         self.after_step(&world.narrow_phase, &world.bodies, &world.colliders);
     }
 
     /// Before a bare `PhysicsPipeline::step`: notices colliders and bodies
-    /// added, removed or changed through Rapier, gives colliders the flags
-    /// the rules need, and recalculates live pairs as the policy says. Call
+    /// added, removed or changed through Rapier, plans every collider's
+    /// flags and groups again if anything they depend on changed, and
+    /// recalculates live pairs as the policy says. Call
     /// [`wake_edited`](Self::wake_edited) next, then step with these hooks,
     /// then [`after_step`](Self::after_step).
     pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
         self.step += 1;
         let mut changed = self.sync_colliders(bodies, colliders);
-        self.rules.remove_missing(bodies, colliders);
-        self.configure_modification(colliders);
-
+        if self.rules.remove_missing(bodies, colliders) > 0 {
+            self.replan = true;
+        }
         let changes = self.rules.take_changes();
+        if self.replan || !changes.is_empty() {
+            self.apply_plan(bodies, colliders);
+        }
+
         let mut drop_overrides = HashSet::new();
         for node in std::mem::take(&mut self.forced) {
             drop_overrides.extend(self.colliders_under(node, bodies, colliders));
@@ -385,7 +470,38 @@ impl RuleHooks {
             self.recalculate_all = false;
         }
         if everything || !affected.is_empty() || !drop_overrides.is_empty() {
-            self.recalculate(bodies, colliders, everything, &affected, &drop_overrides);
+            let refresh =
+                self.recalculate(bodies, colliders, everything, &affected, &drop_overrides);
+            for handle in refresh {
+                if let Some(collider) = colliders.get_mut(handle) {
+                    let groups = collider.collision_groups();
+                    collider.set_collision_groups(InteractionGroups::none());
+                    collider.set_collision_groups(groups);
+                    self.regrouped.insert(handle);
+                }
+            }
+        }
+    }
+
+    /// Settles `ManifoldUpdate::Never` settings made since the last step
+    /// for pairs that have no contacts now: they are frozen empty. (Pairs
+    /// with contacts are frozen in their next contact update, in each body's
+    /// frame.) Part of [`step`](Self::step); call it after
+    /// [`prepare`](Self::prepare) when stepping a bare pipeline.
+    pub fn freeze_manifolds(&mut self, narrow_phase: &NarrowPhase) {
+        for (key, state) in self.pairs.iter() {
+            if state.manifold != ManifoldUpdate::Never {
+                continue;
+            }
+            let mut frozen = state.frozen.lock().unwrap_or_else(PoisonError::into_inner);
+            let (a, b) = key.colliders();
+            let touching = narrow_phase
+                .contact_pair(a, b)
+                .is_some_and(|pair| pair.has_any_active_contact());
+            if frozen.is_none() && !touching {
+                // Step 0 never comes again: no manifold is frozen later.
+                *frozen = Some((0, Vec::new()));
+            }
         }
     }
 
@@ -402,12 +518,14 @@ impl RuleHooks {
     }
 
     /// After a bare `PhysicsPipeline::step`: admits the pairs created during
-    /// the step and forgets the pairs Rapier no longer has.
+    /// the step, takes in the pairs of colliders that just became hooked,
+    /// forgets the pairs Rapier no longer has, and notes the pairs Rapier
+    /// decides natively.
     pub fn after_step(
         &mut self,
         narrow_phase: &NarrowPhase,
-        _bodies: &RigidBodySet,
-        _colliders: &ColliderSet,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
     ) {
         let exists = |key: PairKey| {
             let (a, b) = key.colliders();
@@ -424,18 +542,55 @@ impl RuleHooks {
                 self.pairs.insert(key, state);
             }
         }
+        // A collider that just became hooked may have pairs the hook was not
+        // asked about (sleeping ones): take them in now.
+        for collider in std::mem::take(&mut self.newly_hooked) {
+            let contacts = narrow_phase
+                .contact_pairs_with(collider)
+                .map(|p| (p.collider1, p.collider2));
+            let sensors = narrow_phase
+                .intersection_pairs_with(collider)
+                .map(|(a, b, _)| (a, b));
+            let keys: Vec<PairKey> = contacts
+                .chain(sensors)
+                .map(|(a, b)| PairKey::new(a, b))
+                .collect();
+            for key in keys {
+                if self.pairs.get(key).is_none() {
+                    let (a, b) = key.colliders();
+                    let rule = self.calculate(bodies, colliders, a, b);
+                    self.pairs.insert(key, PairState::new(rule, self.step));
+                }
+            }
+        }
         let mut never_ended = false;
+        let regrouped = std::mem::take(&mut self.regrouped);
         self.pairs.retain(|key, state| {
-            let keep = exists(key);
+            let (a, b) = key.colliders();
+            let keep = exists(key) || regrouped.contains(&a) || regrouped.contains(&b);
             never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
             keep
         });
-        self.manifolds_changed |= never_ended;
+        self.replan |= never_ended;
+
+        // The native pairs: Rapier's pairs of two colliders without the hook.
+        let plan = &self.plan;
+        let native = |c| plan.colliders.get(c).is_some_and(|p| !p.hooked());
+        self.native_pairs.clear();
+        let contacts = narrow_phase
+            .contact_pairs()
+            .map(|p| (p.collider1, p.collider2));
+        let sensors = narrow_phase.intersection_pairs().map(|(a, b, _)| (a, b));
+        for (a, b) in contacts.chain(sensors) {
+            if native(a) && native(b) {
+                self.native_pairs.push(PairKey::new(a, b));
+            }
+        }
     }
 
     /// Notices colliders added, removed, moved to another body, or whose
     /// body changed type; returns the nodes whose chains changed.
-    fn sync_colliders(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) -> Vec<Node> {
+    fn sync_colliders(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> Vec<Node> {
         let mut removed = Vec::new();
         self.known.retain(|handle, known| {
             let gone = !colliders.contains(handle);
@@ -447,78 +602,103 @@ impl RuleHooks {
         for &(handle, body) in &removed {
             self.rules.remove_node(handle);
             self.pairs.retain(|key, _| !key.involves(handle));
-            self.modifying.remove(&handle);
+            self.plan.colliders.remove(handle);
             if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
                 self.rules.remove_node(body);
             }
+            self.replan = true;
         }
 
         let mut changed = Vec::new();
-        let mut to_configure = Vec::new();
         for (handle, collider) in colliders.iter() {
             let body = collider.parent();
             let dynamic = body
                 .and_then(|b| bodies.get(b))
                 .is_some_and(|b| b.is_dynamic());
-            match self.known.get(handle) {
-                None => {
-                    self.known.insert(handle, Known { body, dynamic });
-                }
-                Some(known) if known.body != body => {
-                    self.known.insert(handle, Known { body, dynamic });
-                    changed.push(Node::Collider(handle));
-                }
-                Some(known) if known.dynamic != dynamic => {
-                    self.known.insert(handle, Known { body, dynamic });
-                    changed.extend(body.map(Node::Body));
-                }
-                Some(_) => {}
+            match self.known.get(handle).copied() {
+                Some(known) if known.body == body && known.dynamic == dynamic => continue,
+                Some(known) if known.body != body => changed.push(Node::Collider(handle)),
+                Some(_) => changed.extend(body.map(Node::Body)),
+                None => {}
             }
-            let wanted = HOOKS | (collider.active_hooks() & ActiveHooks::MODIFY_SOLVER_CONTACTS);
-            if collider.active_hooks() != wanted
-                || collider.active_collision_types() != ActiveCollisionTypes::all()
-            {
-                to_configure.push((handle, wanted));
-            }
-        }
-        // `get_mut` marks a collider modified: only for those that need it.
-        for (handle, hooks) in to_configure {
-            let collider = &mut colliders[handle];
-            collider.set_active_hooks(hooks);
-            if collider.active_collision_types() != ActiveCollisionTypes::all() {
-                collider.set_active_collision_types(ActiveCollisionTypes::all());
-                // Changing the collision types alone sets no change flag:
-                // nudging the collision groups makes Rapier look again.
-                let groups = collider.collision_groups();
-                collider.set_collision_groups(InteractionGroups::none());
-                collider.set_collision_groups(groups);
-            }
+            self.known.insert(handle, Known { body, dynamic });
+            self.replan = true;
         }
         changed
     }
 
-    /// Gives the contact-modification flag to exactly the colliders of pairs
-    /// set to `ManifoldUpdate::Never`.
-    fn configure_modification(&mut self, colliders: &mut ColliderSet) {
-        if !std::mem::take(&mut self.manifolds_changed) {
-            return;
-        }
-        let mut wanted = HashSet::new();
+    /// Plans every collider again (see `native.rs`) and gives each the
+    /// flags, groups and types of its plan, touching only those that differ.
+    fn apply_plan(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+        let all_hooked = !self.planner
+            || self.calculator.is_some()
+            || self.on_created.is_some()
+            || self.policy == RecalculationPolicy::Manual;
+        let (mut pinned, mut modifying) = (HashSet::new(), HashSet::new());
         for (key, state) in self.pairs.iter() {
+            let (a, b) = key.colliders();
+            if state.overridden.is_some() || state.manifold != ManifoldUpdate::ByRule {
+                pinned.extend([a, b]);
+            }
             if state.manifold == ManifoldUpdate::Never {
-                let (a, b) = key.colliders();
-                wanted.extend([a, b]);
+                modifying.extend([a, b]);
             }
         }
-        for &handle in self.modifying.symmetric_difference(&wanted) {
-            if let Some(collider) = colliders.get_mut(handle) {
-                let hooks = collider.active_hooks() ^ ActiveHooks::MODIFY_SOLVER_CONTACTS;
-                collider.set_active_hooks(hooks);
+        let plan = native::plan(&self.rules, bodies, colliders, &pinned, all_hooked);
+        let wake = self.policy != RecalculationPolicy::Manual;
+        for (handle, entry) in plan.colliders.iter() {
+            let before = self.plan.colliders.get(handle).copied();
+            if before.is_some_and(|b| !b.hooked()) && entry.hooked() {
+                self.newly_hooked.push(handle);
             }
+            if wake && before.is_some_and(|b| b != *entry) {
+                self.to_wake
+                    .extend(self.known.get(handle).and_then(|k| k.body));
+            }
+            let mut hooks = if entry.hooked() {
+                HOOKS
+            } else {
+                ActiveHooks::empty()
+            };
+            if modifying.contains(&handle) {
+                hooks |= ActiveHooks::MODIFY_SOLVER_CONTACTS;
+            }
+            let current = &colliders[handle];
+            let same = current.active_hooks() == hooks
+                && current.collision_groups() == entry.collision
+                && current.solver_groups() == entry.solver
+                && current.active_collision_types() == entry.types;
+            if same {
+                continue;
+            }
+            if current.collision_groups() != entry.collision
+                || current.solver_groups() != entry.solver
+            {
+                self.regrouped.insert(handle);
+            }
+            // `get_mut` marks a collider modified: only for those that differ.
+            let collider = &mut colliders[handle];
+            collider.set_active_hooks(hooks);
+            collider.set_solver_groups(entry.solver);
+            if collider.active_collision_types() != entry.types {
+                collider.set_active_collision_types(entry.types);
+                // Changing the collision types alone sets no change flag:
+                // nudging the collision groups makes Rapier look again.
+                collider.set_collision_groups(InteractionGroups::none());
+            }
+            collider.set_collision_groups(entry.collision);
         }
-        self.modifying = wanted;
+        self.plan = plan;
+        self.replan = false;
+        // Pairs of two native colliders leave the table: their rules follow
+        // from the plan (pinned pairs are hooked, so they stay).
+        let plan = &self.plan;
+        let hooked = |c| plan.colliders.get(c).is_none_or(|p| p.hooked());
+        self.pairs.retain(|key, _| {
+            let (a, b) = key.colliders();
+            hooked(a) || hooked(b)
+        });
     }
-
     /// `node` itself if it is a collider, and every collider below it.
     fn colliders_under(
         &self,
@@ -543,6 +723,8 @@ impl RuleHooks {
 
     /// Recalculates the live pairs that are `everything`, or touch an
     /// `affected` collider, or a `forced` one (whose overrides are dropped).
+    /// Returns colliders of changed pairs between fixed bodies, which Rapier
+    /// must be made to look at again.
     fn recalculate(
         &mut self,
         bodies: &RigidBodySet,
@@ -550,7 +732,8 @@ impl RuleHooks {
         everything: bool,
         affected: &HashSet<ColliderHandle>,
         forced: &HashSet<ColliderHandle>,
-    ) {
+    ) -> Vec<ColliderHandle> {
+        let mut refresh = Vec::new();
         let mut updates = Vec::new();
         for (key, _) in self.pairs.iter() {
             let (a, b) = key.colliders();
@@ -572,8 +755,21 @@ impl RuleHooks {
             if state.rule() != before {
                 let (a, b) = key.colliders();
                 self.wake_pair(a, b);
+                // Fixed bodies never wake: Rapier looks at their pair again
+                // only if a collider changed.
+                let fixed = |c| {
+                    colliders
+                        .get(c)
+                        .and_then(|c| c.parent())
+                        .and_then(|b| bodies.get(b))
+                        .is_none_or(|b| b.is_fixed())
+                };
+                if fixed(a) && fixed(b) {
+                    refresh.push(a);
+                }
             }
         }
+        refresh
     }
 
     /// A pair's rule: the calculator or the default calculation, then the

@@ -5,6 +5,7 @@ mod error;
 mod group;
 mod hierarchy;
 mod hooks;
+mod native;
 mod node;
 mod pairs;
 mod resolve;

@@ -118,6 +118,10 @@ impl Changes {
         self.nodes = Vec::new();
     }
 
+    pub(crate) fn is_empty(&self) -> bool {
+        !self.everything && self.records.is_empty() && self.nodes.is_empty()
+    }
+
     fn cap(&mut self) {
         if self.records.len() + self.nodes.len() > CHANGE_LOG_LIMIT {
             self.everything();
@@ -494,6 +498,7 @@ impl CollisionRuleSet {
         } else if let Some(record) = self.record_mut(node) {
             record.specific.insert(other, rule);
             self.touch(node);
+            self.changes.node(other);
         }
     }
 
@@ -512,6 +517,7 @@ impl CollisionRuleSet {
         if let Some(id) = self.record_id(node) {
             self.records.get_mut(id).specific.remove(&other);
             self.tidy(node);
+            self.changes.node(other);
         }
     }
 

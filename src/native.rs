@@ -1,0 +1,250 @@
+//! What Rapier can test itself. The planner gives each collider the
+//! cheapest mechanism that decides all of its pairs exactly: collision
+//! groups for group-level `NoPair`, solver groups for group-level
+//! `NoResponse`, active collision types for pairs of non-dynamic bodies, and
+//! the hook flag only where a pair needs a decision per pair.
+//!
+//! A collider is *native* when its pairs with every other native collider
+//! are a function of two small facts about each side: its effective group
+//! and whether its body is dynamic. That holds when no node of its chain
+//! carries a personal rule or specific entries, no specific entry names a
+//! node of its chain, and every node of its chain has the same effective
+//! group: then the specific and personal stages defer, every step of the
+//! group stage compares the same two groups, and the rule is
+//! `table[g1, g2]`, else the default, then the special case of section 5.
+//! A pair with a hooked collider is decided by the hook, so hooked colliders
+//! carry permissive groups and pass every native test.
+
+use hashbrown::{HashMap, HashSet};
+use rapier3d::prelude::*;
+
+use crate::node::HandleMap;
+use crate::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
+
+/// The bit shared by every group that has no native relation.
+const OTHER_BIT: u32 = 31;
+
+/// The facts that decide a native collider's pairs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct Class {
+    pub(crate) group: CollisionGroup,
+    pub(crate) dynamic: bool,
+}
+
+/// The Rapier settings the planner gives one collider.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct ColliderPlan {
+    /// `None`: the collider is hooked.
+    pub(crate) class: Option<Class>,
+    pub(crate) collision: InteractionGroups,
+    pub(crate) solver: InteractionGroups,
+    pub(crate) types: ActiveCollisionTypes,
+}
+
+impl ColliderPlan {
+    pub(crate) fn hooked(&self) -> bool {
+        self.class.is_none()
+    }
+
+    fn hooked_plan(dynamic: bool) -> ColliderPlan {
+        ColliderPlan {
+            class: None,
+            collision: InteractionGroups::all(),
+            solver: InteractionGroups::all(),
+            types: types(dynamic),
+        }
+    }
+}
+
+/// Dynamic colliders keep Rapier's default types (they cover every pair with
+/// a dynamic body); non-dynamic ones take all types, so that two of them can
+/// pair where the rules allow it: collision groups or the hook refuse the rest.
+fn types(dynamic: bool) -> ActiveCollisionTypes {
+    if dynamic {
+        ActiveCollisionTypes::default()
+    } else {
+        ActiveCollisionTypes::all()
+    }
+}
+
+/// The rule between two native classes.
+pub(crate) fn class_rule(rules: &CollisionRuleSet, a: Class, b: Class) -> CollisionRule {
+    let mut rule = rules.group_rule(a.group, b.group);
+    if !rule.is_decided() {
+        rule = rules.default_rule();
+    }
+    if rule == CollisionRule::Normal && !a.dynamic && !b.dynamic {
+        rule = CollisionRule::NoResponse;
+    }
+    rule
+}
+
+/// The plan of every collider.
+#[derive(Debug, Default)]
+pub(crate) struct Plan {
+    pub(crate) colliders: HandleMap<ColliderHandle, ColliderPlan>,
+}
+
+/// Plans every collider of `colliders`. `pinned` colliders are hooked
+/// whatever their rules (pairs with an override or a manifold setting);
+/// with `all_hooked`, every collider is.
+pub(crate) fn plan(
+    rules: &CollisionRuleSet,
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    pinned: &HashSet<ColliderHandle>,
+    all_hooked: bool,
+) -> Plan {
+    let dynamic_of = |collider: &Collider| {
+        collider
+            .parent()
+            .and_then(|b| bodies.get(b))
+            .is_some_and(|b| b.is_dynamic())
+    };
+    let mut plan = Plan::default();
+    if all_hooked {
+        for (handle, collider) in colliders.iter() {
+            plan.colliders
+                .insert(handle, ColliderPlan::hooked_plan(dynamic_of(collider)));
+        }
+        return plan;
+    }
+
+    // Nodes named by a specific entry: their colliders' pairs are per pair.
+    let named: HashSet<Node> = rules
+        .records
+        .live()
+        .flat_map(|record| record.specific.keys().copied())
+        .collect();
+
+    // Each collider's class, or None where its chain needs the hook.
+    let mut classes: Vec<(ColliderHandle, Option<Class>, bool)> =
+        Vec::with_capacity(colliders.len());
+    for (handle, collider) in colliders.iter() {
+        let dynamic = dynamic_of(collider);
+        let class = (!pinned.contains(&handle))
+            .then(|| native_class(rules, bodies, colliders, &named, handle, dynamic))
+            .flatten();
+        classes.push((handle, class, dynamic));
+    }
+
+    // The groups native colliders use, and the rules between them.
+    let mut used: Vec<CollisionGroup> = classes
+        .iter()
+        .filter_map(|(_, class, _)| class.map(|c| c.group))
+        .collect::<HashSet<_>>()
+        .into_iter()
+        .collect();
+    used.sort_unstable();
+    let group_rule = |a: CollisionGroup, b: CollisionGroup| {
+        let rule = rules.group_rule(a, b);
+        if rule.is_decided() {
+            rule
+        } else {
+            rules.default_rule()
+        }
+    };
+    // A group with a NoContacts relation needs the hook: the pair must exist
+    // without contacts, which no group test can say.
+    let needs_hook: HashSet<CollisionGroup> = used
+        .iter()
+        .flat_map(|&a| used.iter().map(move |&b| (a, b)))
+        .filter(|&(a, b)| group_rule(a, b) == CollisionRule::NoContacts)
+        .flat_map(|(a, b)| [a, b])
+        .collect();
+    let involved: Vec<CollisionGroup> = used
+        .iter()
+        .copied()
+        .filter(|g| !needs_hook.contains(g))
+        .filter(|&a| {
+            used.iter().any(|&b| {
+                !needs_hook.contains(&b)
+                    && matches!(
+                        group_rule(a, b),
+                        CollisionRule::NoPair | CollisionRule::NoResponse
+                    )
+            })
+        })
+        .collect();
+    // One bit per involved group while they fit; the rest fall back to hooks.
+    let bits: HashMap<CollisionGroup, u32> = involved
+        .iter()
+        .take(OTHER_BIT as usize)
+        .enumerate()
+        .map(|(bit, &g)| (g, bit as u32))
+        .collect();
+    let native_group = |g: CollisionGroup| {
+        !needs_hook.contains(&g) && (bits.contains_key(&g) || !involved.contains(&g))
+    };
+    let bit_of = |g: CollisionGroup| {
+        Group::from_bits_retain(1 << bits.get(&g).copied().unwrap_or(OTHER_BIT))
+    };
+    let filter_of = |g: CollisionGroup, excluded: CollisionRule| {
+        let mut filter = Group::ALL;
+        for (&h, &bit) in &bits {
+            if group_rule(g, h) == excluded {
+                filter.remove(Group::from_bits_retain(1 << bit));
+            }
+        }
+        filter
+    };
+    let mut filters: HashMap<CollisionGroup, (Group, Group)> = HashMap::new();
+
+    for (handle, class, dynamic) in classes {
+        let entry = match class.filter(|c| native_group(c.group)) {
+            None => ColliderPlan::hooked_plan(dynamic),
+            Some(class) => {
+                let g = class.group;
+                let (collision, solver) = *filters.entry(g).or_insert_with(|| {
+                    (
+                        filter_of(g, CollisionRule::NoPair),
+                        filter_of(g, CollisionRule::NoResponse),
+                    )
+                });
+                ColliderPlan {
+                    class: Some(class),
+                    collision: InteractionGroups::new(
+                        bit_of(g),
+                        collision,
+                        InteractionTestMode::And,
+                    ),
+                    solver: InteractionGroups::new(bit_of(g), solver, InteractionTestMode::And),
+                    types: types(dynamic),
+                }
+            }
+        };
+        plan.colliders.insert(handle, entry);
+    }
+    plan
+}
+
+/// The class of collider `leaf`, or `None` if its chain carries per-pair
+/// rules or mixes effective groups.
+fn native_class(
+    rules: &CollisionRuleSet,
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    named: &HashSet<Node>,
+    leaf: ColliderHandle,
+    dynamic: bool,
+) -> Option<Class> {
+    let mut group = None;
+    let mut node = Some(Node::Collider(leaf));
+    while let Some(current) = node {
+        if named.contains(&current) {
+            return None;
+        }
+        if let Some(record) = rules.record(current) {
+            if record.personal.is_decided() || !record.specific.is_empty() {
+                return None;
+            }
+        }
+        let effective = rules.effective_group(bodies, colliders, current);
+        if group.is_some_and(|g| g != effective) {
+            return None;
+        }
+        group = Some(effective);
+        node = rules.hierarchy.next(bodies, colliders, current);
+    }
+    group.map(|group| Class { group, dynamic })
+}

@@ -1,46 +1,52 @@
 //! Step cost of `RuleHooks` against plain Rapier, side by side in one run:
-//! piles of 1,000 and 4,000 unit boxes (never sleeping) on a ground slab.
+//! piles of 1,000 and 4,000 unit boxes (never sleeping) standing in columns
+//! of ten, the columns side by side, on a ground slab. Every variant's rules
+//! leave the physics as it is in its plain twin, so the two worlds stay the
+//! same and the difference is the cost of the rules alone.
 //!
 //! - `none`: no rules, against `PhysicsWorld::step`;
-//! - `groups`: four groups with group-level `NoPair` and `NoResponse` rules,
-//!   against the same rules written by hand as Rapier collision and solver
-//!   groups;
-//! - `specific`: specific rules on 5% of the bodies, against plain Rapier;
-//! - `hooked`: the planner off (every collider hooked), against plain Rapier.
+//! - `groups`: each column in one of four groups, with group-level `NoPair`
+//!   and `NoResponse` rules between neighbouring columns, against the same
+//!   rules written by hand as Rapier collision and solver groups;
+//! - `specific`: specific rules (`NoResponse`, `NoContacts`) on 5% of the
+//!   bodies, each about a body across the pile, against plain Rapier;
+//! - `hooked`: no rules but the planner off (every collider hooked), against
+//!   plain Rapier.
+
+use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks};
 use rapier3d::prelude::*;
-use std::time::Duration;
 
-/// A settled pile of `n` boxes in columns of ten, and its body handles.
-fn pile(n: usize) -> (PhysicsWorld, Vec<RigidBodyHandle>) {
+/// A settled pile of `n` boxes, and each box's body and column.
+pub fn pile(n: usize) -> (PhysicsWorld, Vec<(RigidBodyHandle, usize)>) {
     let mut world = PhysicsWorld::new();
     let ground =
         world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-    world.insert_collider(ColliderBuilder::cuboid(200.0, 0.5, 200.0), Some(ground));
+    world.insert_collider(ColliderBuilder::cuboid(500.0, 0.5, 500.0), Some(ground));
     let side = ((n / 10) as f32).sqrt().ceil() as usize;
-    let mut bodies = Vec::with_capacity(n);
+    let mut boxes = Vec::with_capacity(n);
     for i in 0..n {
         let column = i / 10;
-        let (cx, cz) = ((column % side) as f32 * 1.5, (column / side) as f32 * 1.5);
-        let y = 0.5 + (i % 10) as f32 * 1.02;
+        let (x, z) = ((column % side) as f32 * 1.01, (column / side) as f32 * 1.01);
+        let y = 0.5 + (i % 10) as f32 * 1.001;
         let body = world.insert_body(
             RigidBodyBuilder::dynamic()
-                .translation(Vector::new(cx, y, cz))
+                .translation(Vector::new(x, y, z))
                 .can_sleep(false),
         );
         world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
-        bodies.push(body);
+        boxes.push((body, column));
     }
-    for _ in 0..30 {
+    for _ in 0..60 {
         world.step();
     }
-    (world, bodies)
+    (world, boxes)
 }
 
-/// The four benchmark groups and their table: A-B NoPair, C-D NoResponse,
-/// A-C NoResponse, B-D NoPair; each group with itself Normal.
+/// The four groups' table: A-B `NoPair`, C-D `NoResponse`, A-C `NoResponse`,
+/// B-D `NoPair`; each group with itself `Normal` (no entry).
 fn group_rules(rules: &mut CollisionRuleSet) -> [CollisionGroup; 4] {
     let g = [
         rules.create_group(),
@@ -55,84 +61,101 @@ fn group_rules(rules: &mut CollisionRuleSet) -> [CollisionGroup; 4] {
     g
 }
 
-/// The same four groups as Rapier collision and solver groups.
-fn hand_written_groups(world: &mut PhysicsWorld, bodies: &[RigidBodyHandle]) {
-    let bit = |i: usize| Group::from_bits_retain(1 << i);
-    // Group i's collision filter leaves out NoPair partners, its solver
-    // filter NoResponse partners (the ground is in none of them: bit 4).
-    let no_pair = [bit(1), bit(0), Group::NONE, Group::NONE];
-    let no_pair = [no_pair[0], no_pair[1] | bit(3), no_pair[2], bit(1)];
+/// The same table as Rapier collision and solver groups. Group `i` is bit
+/// `i + 1` (bit 0 is the ground's default membership).
+fn hand_written_groups(world: &mut PhysicsWorld, boxes: &[(RigidBodyHandle, usize)]) {
+    let bit = |g: usize| Group::from_bits_retain(1 << (g + 1));
+    // Each group's collision filter leaves out its NoPair partners, its
+    // solver filter its NoResponse partners.
+    let no_pair = [bit(1), bit(0) | bit(3), Group::NONE, bit(1)];
     let no_response = [bit(2), Group::NONE, bit(3) | bit(0), bit(2)];
-    for (i, &body) in bodies.iter().enumerate() {
-        let g = i % 4;
+    for &(body, column) in boxes {
+        let g = column % 4;
         let collider = world.bodies[body].colliders()[0];
+        let groups = |excluded: Group| {
+            InteractionGroups::new(bit(g), Group::ALL - excluded, InteractionTestMode::And)
+        };
         let c = &mut world.colliders[collider];
-        c.set_collision_groups(InteractionGroups::new(
-            bit(g),
-            Group::ALL - no_pair[g],
-            InteractionTestMode::And,
-        ));
-        c.set_solver_groups(InteractionGroups::new(
-            bit(g),
-            Group::ALL - no_response[g],
-            InteractionTestMode::And,
-        ));
+        c.set_collision_groups(groups(no_pair[g]));
+        c.set_solver_groups(groups(no_response[g]));
     }
+}
+
+/// The rule sets of the variants.
+pub fn variant_rules(variant: &str, boxes: &[(RigidBodyHandle, usize)]) -> CollisionRuleSet {
+    let mut rules = CollisionRuleSet::default();
+    match variant {
+        "groups" => {
+            let g = group_rules(&mut rules);
+            for &(body, column) in boxes {
+                rules.set_group(body, Some(g[column % 4]));
+            }
+        }
+        "specific" => {
+            // One body in twenty says something about a body half the pile
+            // away, which it never meets: 5% of the bodies carry rules.
+            let n = boxes.len();
+            for i in (0..n).step_by(20) {
+                let rule = if i % 40 == 0 {
+                    CollisionRule::NoResponse
+                } else {
+                    CollisionRule::NoContacts
+                };
+                rules.set_specific(boxes[i].0, boxes[(i + n / 2) % n].0, rule);
+            }
+        }
+        _ => {}
+    }
+    rules
 }
 
 fn step(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group
         .sample_size(20)
-        .measurement_time(Duration::from_secs(8))
-        .warm_up_time(Duration::from_secs(2));
+        .measurement_time(Duration::from_secs(6))
+        .warm_up_time(Duration::from_secs(1));
     for n in [1000, 4000] {
-        let mut plain = pile(n).0;
-        group.bench_function(BenchmarkId::new("none/plain", n), |b| {
-            b.iter(|| plain.step())
-        });
-        let (mut world, mut hooks) = (pile(n).0, RuleHooks::default());
-        group.bench_function(BenchmarkId::new("none/rules", n), |b| {
-            b.iter(|| hooks.step(&mut world))
-        });
-
-        let (mut plain, bodies) = pile(n);
-        hand_written_groups(&mut plain, &bodies);
-        group.bench_function(BenchmarkId::new("groups/plain", n), |b| {
-            b.iter(|| plain.step())
-        });
-        let (mut world, bodies) = pile(n);
-        let mut rules = CollisionRuleSet::default();
-        let g = group_rules(&mut rules);
-        for (i, &body) in bodies.iter().enumerate() {
-            rules.set_group(body, Some(g[i % 4]));
+        for variant in ["none", "groups", "specific", "hooked"] {
+            let (mut plain, boxes) = pile(n);
+            if variant == "groups" {
+                hand_written_groups(&mut plain, &boxes);
+            }
+            group.bench_function(BenchmarkId::new(format!("{variant}/plain"), n), |b| {
+                b.iter(|| plain.step())
+            });
+            let (mut world, boxes) = pile(n);
+            let mut hooks = RuleHooks::new(variant_rules(variant, &boxes));
+            hooks.set_planner(variant != "hooked");
+            group.bench_function(BenchmarkId::new(format!("{variant}/rules"), n), |b| {
+                b.iter(|| hooks.step(&mut world))
+            });
         }
-        let mut hooks = RuleHooks::new(rules);
-        group.bench_function(BenchmarkId::new("groups/rules", n), |b| {
-            b.iter(|| hooks.step(&mut world))
-        });
+    }
+    group.finish();
+}
 
-        let mut plain = pile(n).0;
-        group.bench_function(BenchmarkId::new("specific/plain", n), |b| {
-            b.iter(|| plain.step())
-        });
-        let (mut world, bodies) = pile(n);
-        let mut rules = CollisionRuleSet::default();
-        for (i, pair) in bodies.chunks(2).enumerate().filter(|(i, _)| i % 10 == 0) {
-            let rule = if i % 20 == 0 {
-                CollisionRule::NoResponse
-            } else {
-                CollisionRule::NoContacts
-            };
-            rules.set_specific(pair[0], pair[1], rule);
-        }
-        let mut hooks = RuleHooks::new(rules);
-        group.bench_function(BenchmarkId::new("specific/rules", n), |b| {
-            b.iter(|| hooks.step(&mut world))
+/// The cost of an edit: one body's group changes, and the next `prepare`
+/// plans again.
+fn edit(c: &mut Criterion) {
+    let mut group = c.benchmark_group("edit");
+    for n in [1000, 4000] {
+        let (mut world, boxes) = pile(n);
+        let mut hooks = RuleHooks::new(variant_rules("groups", &boxes));
+        hooks.step(&mut world);
+        let spare = hooks.rules_mut().create_group();
+        let mut flip = false;
+        group.bench_function(BenchmarkId::new("set_group+prepare", n), |b| {
+            b.iter(|| {
+                flip = !flip;
+                let body = boxes[n / 2].0;
+                hooks.rules_mut().set_group(body, flip.then_some(spare));
+                hooks.prepare(&world.bodies, &mut world.colliders);
+            })
         });
     }
     group.finish();
 }
 
-criterion_group!(benches, step);
+criterion_group!(benches, step, edit);
 criterion_main!(benches);

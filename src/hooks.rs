@@ -77,6 +77,8 @@ type CreatedCallback = Box<dyn Fn(&PairCreated<'_>) -> Option<CollisionRule> + S
 struct Known {
     body: Option<RigidBodyHandle>,
     dynamic: bool,
+    /// The last step in which it was seen in the collider set.
+    seen: u64,
 }
 
 /// The hook flags every managed collider carries.
@@ -138,6 +140,11 @@ pub struct RuleHooks {
     /// Colliders whose groups the last plan changed. Rapier drops and finds
     /// their pairs again, so their table entries outlive one absence.
     regrouped: HashSet<ColliderHandle>,
+    /// The size of the body set at the last check for removed bodies.
+    body_count: usize,
+    /// One bit per collider slot: set for native colliders (read by the
+    /// after-step scan of Rapier's pairs, which must stay cheap).
+    native_bits: Vec<u64>,
 }
 
 impl std::fmt::Debug for RuleHooks {
@@ -179,6 +186,8 @@ impl RuleHooks {
             newly_hooked: Vec::new(),
             native_pairs: Vec::new(),
             regrouped: HashSet::new(),
+            body_count: usize::MAX,
+            native_bits: Vec::new(),
         }
     }
 
@@ -443,8 +452,15 @@ impl RuleHooks {
     pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
         self.step += 1;
         let mut changed = self.sync_colliders(bodies, colliders);
-        if self.rules.remove_missing(bodies, colliders) > 0 {
-            self.replan = true;
+        // Bodies removed through Rapier: the set shrank, or colliders went
+        // with them (a removal and an insertion between two steps leave a
+        // stale rule behind only until the next change; it can never match
+        // the new body, whose handle has another generation).
+        if self.replan || bodies.len() != self.body_count {
+            self.body_count = bodies.len();
+            if self.rules.remove_missing(bodies, colliders) > 0 {
+                self.replan = true;
+            }
         }
         let changes = self.rules.take_changes();
         if self.replan || !changes.is_empty() {
@@ -574,8 +590,12 @@ impl RuleHooks {
         self.replan |= never_ended;
 
         // The native pairs: Rapier's pairs of two colliders without the hook.
-        let plan = &self.plan;
-        let native = |c| plan.colliders.get(c).is_some_and(|p| !p.hooked());
+        let bits = &self.native_bits;
+        let native = |c: ColliderHandle| {
+            let index = c.into_raw_parts().0 as usize;
+            bits.get(index / 64)
+                .is_some_and(|w| w >> (index % 64) & 1 == 1)
+        };
         self.native_pairs.clear();
         let contacts = narrow_phase
             .contact_pairs()
@@ -591,9 +611,41 @@ impl RuleHooks {
     /// Notices colliders added, removed, moved to another body, or whose
     /// body changed type; returns the nodes whose chains changed.
     fn sync_colliders(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> Vec<Node> {
+        // One pass over the set (Rapier's memory is the cost here), then one
+        // over the hooks' own compact table for what was not seen.
+        let step = self.step;
+        let mut changed = Vec::new();
+        for (handle, collider) in colliders.iter() {
+            let body = collider.parent();
+            let dynamic = body
+                .and_then(|b| bodies.get(b))
+                .is_some_and(|b| b.is_dynamic());
+            if let Some(known) = self.known.get_mut(handle) {
+                known.seen = step;
+                if known.body == body && known.dynamic == dynamic {
+                    continue;
+                }
+                if known.body != body {
+                    changed.push(Node::Collider(handle));
+                } else {
+                    changed.extend(body.map(Node::Body));
+                }
+                known.body = body;
+                known.dynamic = dynamic;
+            } else {
+                let known = Known {
+                    body,
+                    dynamic,
+                    seen: step,
+                };
+                self.known.insert(handle, known);
+            }
+            self.replan = true;
+        }
+
         let mut removed = Vec::new();
         self.known.retain(|handle, known| {
-            let gone = !colliders.contains(handle);
+            let gone = known.seen != step;
             if gone {
                 removed.push((handle, known.body));
             }
@@ -606,22 +658,6 @@ impl RuleHooks {
             if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
                 self.rules.remove_node(body);
             }
-            self.replan = true;
-        }
-
-        let mut changed = Vec::new();
-        for (handle, collider) in colliders.iter() {
-            let body = collider.parent();
-            let dynamic = body
-                .and_then(|b| bodies.get(b))
-                .is_some_and(|b| b.is_dynamic());
-            match self.known.get(handle).copied() {
-                Some(known) if known.body == body && known.dynamic == dynamic => continue,
-                Some(known) if known.body != body => changed.push(Node::Collider(handle)),
-                Some(_) => changed.extend(body.map(Node::Body)),
-                None => {}
-            }
-            self.known.insert(handle, Known { body, dynamic });
             self.replan = true;
         }
         changed
@@ -687,6 +723,18 @@ impl RuleHooks {
                 collider.set_collision_groups(InteractionGroups::none());
             }
             collider.set_collision_groups(entry.collision);
+        }
+        // OK since handles in the plan are those of the set as of now: a
+        // slot's bit describes its current collider until the next plan.
+        self.native_bits.clear();
+        for (handle, entry) in plan.colliders.iter() {
+            let index = handle.into_raw_parts().0 as usize;
+            if index / 64 >= self.native_bits.len() {
+                self.native_bits.resize(index / 64 + 1, 0);
+            }
+            if !entry.hooked() {
+                self.native_bits[index / 64] |= 1 << (index % 64);
+            }
         }
         self.plan = plan;
         self.replan = false;

@@ -21,9 +21,6 @@ use rapier3d::prelude::*;
 use crate::node::HandleMap;
 use crate::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
 
-/// The bit shared by every group that has no native relation.
-const OTHER_BIT: u32 = 31;
-
 /// The facts that decide a native collider's pairs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) struct Class {
@@ -46,24 +43,20 @@ impl ColliderPlan {
         self.class.is_none()
     }
 
+    /// A hooked collider keeps a collider's default groups (every bit), which
+    /// pass every native test, so the hook decides; a non-dynamic one takes every collision type so that
+    /// the hook also sees its pairs with other non-dynamic colliders.
     fn hooked_plan(dynamic: bool) -> ColliderPlan {
         ColliderPlan {
             class: None,
             collision: InteractionGroups::all(),
             solver: InteractionGroups::all(),
-            types: types(dynamic),
+            types: if dynamic {
+                ActiveCollisionTypes::default()
+            } else {
+                ActiveCollisionTypes::all()
+            },
         }
-    }
-}
-
-/// Dynamic colliders keep Rapier's default types (they cover every pair with
-/// a dynamic body); non-dynamic ones take all types, so that two of them can
-/// pair where the rules allow it: collision groups or the hook refuse the rest.
-fn types(dynamic: bool) -> ActiveCollisionTypes {
-    if dynamic {
-        ActiveCollisionTypes::default()
-    } else {
-        ActiveCollisionTypes::all()
     }
 }
 
@@ -128,13 +121,18 @@ pub(crate) fn plan(
         classes.push((handle, class, dynamic));
     }
 
-    // The groups native colliders use, and the rules between them.
-    let mut used: Vec<CollisionGroup> = classes
-        .iter()
-        .filter_map(|(_, class, _)| class.map(|c| c.group))
-        .collect::<HashSet<_>>()
-        .into_iter()
-        .collect();
+    // The groups native colliders use, whether each has dynamic and
+    // non-dynamic members, and the rules between them.
+    let mut members: HashMap<CollisionGroup, (bool, bool)> = HashMap::new();
+    for class in classes.iter().filter_map(|(_, class, _)| *class) {
+        let entry = members.entry(class.group).or_default();
+        if class.dynamic {
+            entry.0 = true;
+        } else {
+            entry.1 = true;
+        }
+    }
+    let mut used: Vec<CollisionGroup> = members.keys().copied().collect();
     used.sort_unstable();
     let group_rule = |a: CollisionGroup, b: CollisionGroup| {
         let rule = rules.group_rule(a, b);
@@ -144,45 +142,60 @@ pub(crate) fn plan(
             rules.default_rule()
         }
     };
+    let relations = || {
+        used.iter()
+            .flat_map(|&a| used.iter().map(move |&b| (a, b, group_rule(a, b))))
+    };
     // A group with a NoContacts relation needs the hook: the pair must exist
     // without contacts, which no group test can say.
-    let needs_hook: HashSet<CollisionGroup> = used
-        .iter()
-        .flat_map(|&a| used.iter().map(move |&b| (a, b)))
-        .filter(|&(a, b)| group_rule(a, b) == CollisionRule::NoContacts)
-        .flat_map(|(a, b)| [a, b])
+    let needs_hook: HashSet<CollisionGroup> = relations()
+        .filter(|&(_, _, rule)| rule == CollisionRule::NoContacts)
+        .flat_map(|(a, b, _)| [a, b])
         .collect();
-    let involved: Vec<CollisionGroup> = used
-        .iter()
-        .copied()
-        .filter(|g| !needs_hook.contains(g))
-        .filter(|&a| {
-            used.iter().any(|&b| {
-                !needs_hook.contains(&b)
-                    && matches!(
-                        group_rule(a, b),
-                        CollisionRule::NoPair | CollisionRule::NoResponse
-                    )
-            })
-        })
+    let has_dynamic = |g: CollisionGroup| members[&g].0;
+    let has_static = |g: CollisionGroup| members[&g].1;
+    // Non-dynamic members take every collision type only where they may pair
+    // with other non-dynamic colliders; elsewhere Rapier's default types
+    // already keep them apart, as NoPair would.
+    let static_types: HashSet<CollisionGroup> = relations()
+        .filter(|&(a, b, rule)| rule != CollisionRule::NoPair && has_static(a) && has_static(b))
+        .flat_map(|(a, b, _)| [a, b])
         .collect();
-    // One bit per involved group while they fit; the rest fall back to hooks.
+    let filtered_by_types = |g: CollisionGroup| !has_dynamic(g) && !static_types.contains(&g);
+    let needs_bits = |(a, b, rule): (CollisionGroup, CollisionGroup, CollisionRule)| match rule {
+        CollisionRule::NoPair => !(filtered_by_types(a) && filtered_by_types(b)),
+        // Only a dynamic body responds: other pairs need no solver test.
+        CollisionRule::NoResponse => has_dynamic(a) || has_dynamic(b),
+        _ => false,
+    };
+    let mut involved: Vec<CollisionGroup> = relations()
+        .filter(|&(a, b, _)| !needs_hook.contains(&a) && !needs_hook.contains(&b))
+        .filter(|&relation| needs_bits(relation))
+        .flat_map(|(a, b, _)| [a, b])
+        .collect::<HashSet<_>>()
+        .into_iter()
+        .collect();
+    involved.sort_unstable();
+    // One bit per involved group while they fit; the rest fall back to
+    // hooks. A group with no relation to test keeps every bit as its
+    // membership (a collider's default), which no filter leaves out.
     let bits: HashMap<CollisionGroup, u32> = involved
         .iter()
-        .take(OTHER_BIT as usize)
+        .take(32)
         .enumerate()
-        .map(|(bit, &g)| (g, bit as u32))
+        .map(|(i, &g)| (g, i as u32))
         .collect();
     let native_group = |g: CollisionGroup| {
         !needs_hook.contains(&g) && (bits.contains_key(&g) || !involved.contains(&g))
     };
     let bit_of = |g: CollisionGroup| {
-        Group::from_bits_retain(1 << bits.get(&g).copied().unwrap_or(OTHER_BIT))
+        bits.get(&g)
+            .map_or(Group::ALL, |&bit| Group::from_bits_retain(1 << bit))
     };
     let filter_of = |g: CollisionGroup, excluded: CollisionRule| {
         let mut filter = Group::ALL;
         for (&h, &bit) in &bits {
-            if group_rule(g, h) == excluded {
+            if group_rule(g, h) == excluded && needs_bits((g, h, excluded)) {
                 filter.remove(Group::from_bits_retain(1 << bit));
             }
         }
@@ -201,6 +214,11 @@ pub(crate) fn plan(
                         filter_of(g, CollisionRule::NoResponse),
                     )
                 });
+                let types = if dynamic || !static_types.contains(&g) {
+                    ActiveCollisionTypes::default()
+                } else {
+                    ActiveCollisionTypes::all()
+                };
                 ColliderPlan {
                     class: Some(class),
                     collision: InteractionGroups::new(
@@ -209,7 +227,7 @@ pub(crate) fn plan(
                         InteractionTestMode::And,
                     ),
                     solver: InteractionGroups::new(bit_of(g), solver, InteractionTestMode::And),
-                    types: types(dynamic),
+                    types,
                 }
             }
         };

@@ -88,6 +88,14 @@ impl<H: Handle, V> HandleMap<H, V> {
         }
     }
 
+    pub(crate) fn get_mut(&mut self, handle: H) -> Option<&mut V> {
+        let (index, generation) = handle.raw_parts();
+        match self.slots.get_mut(index as usize) {
+            Some(Some((stored, value))) if *stored == generation => Some(value),
+            _ => None,
+        }
+    }
+
     /// Whether the slot of `handle` holds a newer generation: Rapier has
     /// removed the object and reused its slot, so `handle` names nothing.
     #[inline]

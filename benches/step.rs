@@ -13,9 +13,9 @@
 //! - `hooked`: no rules but the planner off (every collider hooked), against
 //!   plain Rapier.
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
-use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, criterion_group};
 use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks};
 use rapier3d::prelude::*;
 
@@ -109,6 +109,49 @@ pub fn variant_rules(variant: &str, boxes: &[(RigidBodyHandle, usize)]) -> Colli
     rules
 }
 
+/// A variant's two worlds, stepped in lockstep: each benchmark times one
+/// world's step and steps the other untimed, so that both stand at the same
+/// point of their (identical) evolution whenever either is measured.
+struct Twins {
+    plain: PhysicsWorld,
+    world: PhysicsWorld,
+    hooks: RuleHooks,
+}
+
+impl Twins {
+    fn new(variant: &str, n: usize) -> Twins {
+        let (mut plain, boxes) = pile(n);
+        if variant == "groups" {
+            hand_written_groups(&mut plain, &boxes);
+        }
+        let (world, boxes) = pile(n);
+        let mut hooks = RuleHooks::new(variant_rules(variant, &boxes));
+        hooks.set_planner(variant != "hooked");
+        Twins {
+            plain,
+            world,
+            hooks,
+        }
+    }
+
+    fn time(&mut self, iters: u64, rules: bool) -> Duration {
+        let mut timed = Duration::ZERO;
+        for _ in 0..iters {
+            let start = Instant::now();
+            if rules {
+                self.hooks.step(&mut self.world);
+                timed += start.elapsed();
+                self.plain.step();
+            } else {
+                self.plain.step();
+                timed += start.elapsed();
+                self.hooks.step(&mut self.world);
+            }
+        }
+        timed
+    }
+}
+
 fn step(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group
@@ -117,19 +160,11 @@ fn step(c: &mut Criterion) {
         .warm_up_time(Duration::from_secs(1));
     for n in [1000, 4000] {
         for variant in ["none", "groups", "specific", "hooked"] {
-            let (mut plain, boxes) = pile(n);
-            if variant == "groups" {
-                hand_written_groups(&mut plain, &boxes);
+            let mut twins = Twins::new(variant, n);
+            for (name, rules) in [("plain", false), ("rules", true)] {
+                let id = BenchmarkId::new(format!("{variant}/{name}"), n);
+                group.bench_function(id, |b| b.iter_custom(|iters| twins.time(iters, rules)));
             }
-            group.bench_function(BenchmarkId::new(format!("{variant}/plain"), n), |b| {
-                b.iter(|| plain.step())
-            });
-            let (mut world, boxes) = pile(n);
-            let mut hooks = RuleHooks::new(variant_rules(variant, &boxes));
-            hooks.set_planner(variant != "hooked");
-            group.bench_function(BenchmarkId::new(format!("{variant}/rules"), n), |b| {
-                b.iter(|| hooks.step(&mut world))
-            });
         }
     }
     group.finish();
@@ -157,5 +192,35 @@ fn edit(c: &mut Criterion) {
     group.finish();
 }
 
+/// Paired ratios: each variant's two worlds stepped alternately, 3 runs of
+/// 100 step pairs, each step timed back to back with its twin at the same
+/// point of the evolution; prints the median of the runs' ratios. Less
+/// exposed to the machine drifting between two criterion benchmarks.
+fn paired() {
+    println!("paired ratios (rules / plain, median of 3 runs of 100 step pairs):");
+    for n in [1000, 4000] {
+        for variant in ["none", "groups", "specific", "hooked"] {
+            let mut twins = Twins::new(variant, n);
+            let mut ratios: Vec<f64> = (0..3)
+                .map(|_| {
+                    let (mut plain, mut rules) = (Duration::ZERO, Duration::ZERO);
+                    for _ in 0..100 {
+                        plain += twins.time(1, false);
+                        rules += twins.time(1, true);
+                    }
+                    rules.as_secs_f64() / plain.as_secs_f64()
+                })
+                .collect();
+            ratios.sort_by(f64::total_cmp);
+            println!("  {variant:>8} {n:>5}: {:.3}", ratios[1]);
+        }
+    }
+}
+
 criterion_group!(benches, step, edit);
-criterion_main!(benches);
+
+fn main() {
+    benches();
+    paired();
+    Criterion::default().configure_from_args().final_summary();
+}

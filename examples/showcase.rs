@@ -22,6 +22,16 @@ use rapier3d::prelude::*;
 
 const STEPS: usize = 180;
 const SNAPSHOTS: [usize; 4] = [0, 40, 90, 180];
+/// Where each actor stands, for the labels of the first view.
+const LABELS: [(&str, f32); 7] = [
+    ("ragdoll", -16.6),
+    ("vehicle", -8.0),
+    ("ghost + wall", 1.0),
+    ("player, zone, debris", 10.0),
+    ("platforms", 19.0),
+    ("bullets", 26.5),
+    ("shield / wall", 31.5),
+];
 
 /// One actor of the scene: its colliders, and the pair the table reports.
 struct Actor {
@@ -430,26 +440,20 @@ fn color(rule: Option<CollisionRule>) -> &'static str {
     }
 }
 
-/// Every collider's extent, coloured by the most restrictive rule among its
-/// live pairs (grey: no live pair).
+/// Every collider's extent: an actor's colliders coloured by the rule of the
+/// pair the actor demonstrates (grey while that pair is not live), the
+/// scenery (floor, walls) left white.
 fn snapshot(world: &PhysicsWorld, hooks: &RuleHooks, actors: &[Actor]) -> Vec<Shape> {
-    let mut strongest: HashMap<ColliderHandle, CollisionRule> = HashMap::new();
-    for (a, b, rule) in hooks.pairs() {
-        for c in [a, b] {
-            let entry = strongest.entry(c).or_insert(rule);
-            *entry = entry.most_restrictive(rule);
-        }
-    }
-    // An actor whose rule is NoPair shows it on its colliders.
+    let mut colors: HashMap<ColliderHandle, &'static str> = HashMap::new();
     for actor in actors {
-        let rule =
-            hooks
-                .rules()
-                .resolve(&world.bodies, &world.colliders, actor.pair.0, actor.pair.1);
-        if rule == CollisionRule::NoPair {
-            for &c in &actor.colliders {
-                strongest.insert(c, CollisionRule::NoPair);
-            }
+        let (a, b) = actor.pair;
+        let rule = hooks.rules().resolve(&world.bodies, &world.colliders, a, b);
+        // NoPair pairs are never live: their colour shows all the time.
+        let shown = hooks
+            .pair_rule(a, b)
+            .or((rule == CollisionRule::NoPair).then_some(rule));
+        for &c in &actor.colliders {
+            colors.insert(c, color(shown));
         }
     }
     world
@@ -460,7 +464,7 @@ fn snapshot(world: &PhysicsWorld, hooks: &RuleHooks, actors: &[Actor]) -> Vec<Sh
             Shape {
                 min: (aabb.mins.x, aabb.mins.y),
                 max: (aabb.maxs.x, aabb.maxs.y),
-                color: color(strongest.get(&handle).copied()),
+                color: colors.get(&handle).copied().unwrap_or("#ffffff"),
             }
         })
         .collect()
@@ -510,13 +514,22 @@ fn render(frames: &[(usize, Vec<Shape>)]) -> String {
             r##"<line x1="0" y1="{0}" x2="{w}" y2="{0}" stroke="#ccc"/>"##,
             top + h
         );
+        if i == 0 {
+            for (name, x) in LABELS {
+                let (lx, ly) = ((x - x0) * scale, top + 30.0);
+                let _ = writeln!(
+                    svg,
+                    r#"<text x="{lx:.1}" y="{ly:.1}" text-anchor="middle">{name}</text>"#
+                );
+            }
+        }
     }
     let legend = [
         ("Normal", color(Some(CollisionRule::Normal))),
         ("NoResponse", color(Some(CollisionRule::NoResponse))),
         ("NoContacts", color(Some(CollisionRule::NoContacts))),
         ("NoPair", color(Some(CollisionRule::NoPair))),
-        ("no live pair", color(None)),
+        ("pair not live", color(None)),
     ];
     for (i, (name, fill)) in legend.iter().enumerate() {
         let x = 10.0 + i as f32 * 120.0;

@@ -116,6 +116,8 @@ struct Twins {
     plain: PhysicsWorld,
     world: PhysicsWorld,
     hooks: RuleHooks,
+    /// The control: both worlds plain, to show the measurement's own noise.
+    control: bool,
 }
 
 impl Twins {
@@ -131,6 +133,7 @@ impl Twins {
             plain,
             world,
             hooks,
+            control: variant == "control",
         }
     }
 
@@ -138,7 +141,11 @@ impl Twins {
         let mut timed = Duration::ZERO;
         for _ in 0..iters {
             let start = Instant::now();
-            if rules {
+            if rules && self.control {
+                self.world.step();
+                timed += start.elapsed();
+                self.plain.step();
+            } else if rules {
                 self.hooks.step(&mut self.world);
                 timed += start.elapsed();
                 self.plain.step();
@@ -199,7 +206,7 @@ fn edit(c: &mut Criterion) {
 fn paired() {
     println!("paired ratios (rules / plain, median of 3 runs of 100 step pairs):");
     for n in [1000, 4000] {
-        for variant in ["none", "groups", "specific", "hooked"] {
+        for variant in ["control", "none", "groups", "specific", "hooked"] {
             let mut twins = Twins::new(variant, n);
             let mut ratios: Vec<f64> = (0..3)
                 .map(|_| {
@@ -220,7 +227,10 @@ fn paired() {
 criterion_group!(benches, step, edit);
 
 fn main() {
-    benches();
+    // STEP_PAIRED_ONLY=1 skips the criterion runs.
+    if std::env::var_os("STEP_PAIRED_ONLY").is_none() {
+        benches();
+    }
     paired();
     Criterion::default().configure_from_args().final_summary();
 }

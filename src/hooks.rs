@@ -7,7 +7,7 @@ use std::sync::{Mutex, PoisonError};
 use hashbrown::{HashMap, HashSet};
 use rapier3d::prelude::*;
 
-use crate::native::{self, Plan};
+use crate::native::{self, ColliderPlan, Plan};
 use crate::node::HandleMap;
 use crate::pairs::{self, ManifoldUpdate, PairKey, PairState, PairTable};
 use crate::resolve::special_case;
@@ -126,6 +126,12 @@ pub struct RuleHooks {
     /// A calculator or callback changed: every pair is to be recalculated.
     recalculate_all: bool,
     to_wake: Vec<RigidBodyHandle>,
+    /// Colliders given the contact-modification flag for `ManifoldUpdate::Never`.
+    modifying: HashSet<ColliderHandle>,
+    /// Colliders hooked for their pairs' overrides and manifold settings.
+    pinned: HashSet<ColliderHandle>,
+    /// Colliders to plan again before the next step (a partial plan).
+    candidates: Vec<ColliderHandle>,
     /// Whether the planner may leave colliders unhooked (see `native.rs`).
     planner: bool,
     plan: Plan,
@@ -180,6 +186,9 @@ impl RuleHooks {
             forced: Vec::new(),
             recalculate_all: false,
             to_wake: Vec::new(),
+            modifying: HashSet::new(),
+            pinned: HashSet::new(),
+            candidates: Vec::new(),
             planner: true,
             plan: Plan::default(),
             replan: true,
@@ -451,20 +460,33 @@ impl RuleHooks {
     /// then [`after_step`](Self::after_step).
     pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
         self.step += 1;
-        let mut changed = self.sync_colliders(bodies, colliders);
+        let (mut changed, removed) = self.sync_colliders(bodies, colliders);
         // Bodies removed through Rapier: the set shrank, or colliders went
         // with them (a removal and an insertion between two steps leave a
         // stale rule behind only until the next change; it can never match
         // the new body, whose handle has another generation).
-        if self.replan || bodies.len() != self.body_count {
+        if removed || bodies.len() != self.body_count {
             self.body_count = bodies.len();
-            if self.rules.remove_missing(bodies, colliders) > 0 {
-                self.replan = true;
-            }
+            self.rules.remove_missing(bodies, colliders);
         }
         let changes = self.rules.take_changes();
-        if self.replan || !changes.is_empty() {
+        match self.rules.touched_nodes(&changes) {
+            Some(touched) => changed.extend(touched),
+            None => self.replan = true,
+        }
+        // The colliders whose chains an edit or a change through Rapier
+        // touched: planned again, and their pairs recalculated.
+        let mut under = HashSet::new();
+        for &node in &changed {
+            under.extend(self.colliders_under(node, bodies, colliders));
+        }
+        if self.replan {
             self.apply_plan(bodies, colliders);
+        } else {
+            self.candidates.extend(under.iter().copied());
+            if !self.candidates.is_empty() {
+                self.apply_partial_plan(bodies, colliders);
+            }
         }
 
         let mut drop_overrides = HashSet::new();
@@ -476,11 +498,7 @@ impl RuleHooks {
                 && (changes.everything || std::mem::take(&mut self.recalculate_all)));
         let mut affected = HashSet::new();
         if self.policy == RecalculationPolicy::OnChange && !everything {
-            let touched = self.rules.touched_nodes(&changes).unwrap_or_default();
-            changed.extend(touched);
-            for node in changed {
-                affected.extend(self.colliders_under(node, bodies, colliders));
-            }
+            affected = under;
         }
         if self.policy == RecalculationPolicy::Manual {
             self.recalculate_all = false;
@@ -543,10 +561,14 @@ impl RuleHooks {
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
     ) {
+        // Rapier finds a pair by slot: a handle whose slot was reused must
+        // not find the new collider's pair.
         let exists = |key: PairKey| {
             let (a, b) = key.colliders();
-            narrow_phase.contact_pair(a, b).is_some()
-                || narrow_phase.intersection_pair(a, b).is_some()
+            colliders.contains(a)
+                && colliders.contains(b)
+                && (narrow_phase.contact_pair(a, b).is_some()
+                    || narrow_phase.intersection_pair(a, b).is_some())
         };
         let pending = std::mem::take(
             self.pending
@@ -610,11 +632,16 @@ impl RuleHooks {
 
     /// Notices colliders added, removed, moved to another body, or whose
     /// body changed type; returns the nodes whose chains changed.
-    fn sync_colliders(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> Vec<Node> {
+    fn sync_colliders(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> (Vec<Node>, bool) {
         // One pass over the set (Rapier's memory is the cost here), then one
         // over the hooks' own compact table for what was not seen.
         let step = self.step;
         let mut changed = Vec::new();
+        let mut evicted = Vec::new();
         for (handle, collider) in colliders.iter() {
             let body = collider.parent();
             let dynamic = body
@@ -638,12 +665,16 @@ impl RuleHooks {
                     dynamic,
                     seen: step,
                 };
-                self.known.insert(handle, known);
+                // A collider in a reused slot: the slot's former collider was
+                // removed, so it is forgotten with the other removals below.
+                if let Some((old, former)) = self.known.insert_evicting(handle, known) {
+                    evicted.push((old, former.body));
+                }
             }
-            self.replan = true;
+            self.candidates.push(handle);
         }
 
-        let mut removed = Vec::new();
+        let mut removed = evicted;
         self.known.retain(|handle, known| {
             let gone = known.seen != step;
             if gone {
@@ -651,25 +682,31 @@ impl RuleHooks {
             }
             !gone
         });
+        if !removed.is_empty() {
+            let gone: HashSet<ColliderHandle> = removed.iter().map(|r| r.0).collect();
+            self.pairs.retain(|key, _| {
+                let (a, b) = key.colliders();
+                !gone.contains(&a) && !gone.contains(&b)
+            });
+        }
         for &(handle, body) in &removed {
             self.rules.remove_node(handle);
-            self.pairs.retain(|key, _| !key.involves(handle));
             self.plan.colliders.remove(handle);
+            let index = handle.into_raw_parts().0 as usize;
+            if let Some(word) = self.native_bits.get_mut(index / 64) {
+                *word &= !(1 << (index % 64));
+            }
             if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
                 self.rules.remove_node(body);
             }
-            self.replan = true;
         }
-        changed
+        (changed, !removed.is_empty())
     }
 
     /// Plans every collider again (see `native.rs`) and gives each the
     /// flags, groups and types of its plan, touching only those that differ.
     fn apply_plan(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
-        let all_hooked = !self.planner
-            || self.calculator.is_some()
-            || self.on_created.is_some()
-            || self.policy == RecalculationPolicy::Manual;
+        let all_hooked = self.all_hooked();
         let (mut pinned, mut modifying) = (HashSet::new(), HashSet::new());
         for (key, state) in self.pairs.iter() {
             let (a, b) = key.colliders();
@@ -681,65 +718,127 @@ impl RuleHooks {
             }
         }
         let plan = native::plan(&self.rules, bodies, colliders, &pinned, all_hooked);
-        let wake = self.policy != RecalculationPolicy::Manual;
-        for (handle, entry) in plan.colliders.iter() {
-            let before = self.plan.colliders.get(handle).copied();
-            if before.is_some_and(|b| !b.hooked()) && entry.hooked() {
-                self.newly_hooked.push(handle);
-            }
-            if wake && before.is_some_and(|b| b != *entry) {
-                self.to_wake
-                    .extend(self.known.get(handle).and_then(|k| k.body));
-            }
-            let mut hooks = if entry.hooked() {
-                HOOKS
-            } else {
-                ActiveHooks::empty()
-            };
-            if modifying.contains(&handle) {
-                hooks |= ActiveHooks::MODIFY_SOLVER_CONTACTS;
-            }
-            let current = &colliders[handle];
-            let same = current.active_hooks() == hooks
-                && current.collision_groups() == entry.collision
-                && current.solver_groups() == entry.solver
-                && current.active_collision_types() == entry.types;
-            if same {
-                continue;
-            }
-            if current.collision_groups() != entry.collision
-                || current.solver_groups() != entry.solver
-            {
-                self.regrouped.insert(handle);
-            }
-            // `get_mut` marks a collider modified: only for those that differ.
-            let collider = &mut colliders[handle];
-            collider.set_active_hooks(hooks);
-            collider.set_solver_groups(entry.solver);
-            if collider.active_collision_types() != entry.types {
-                collider.set_active_collision_types(entry.types);
-                // Changing the collision types alone sets no change flag:
-                // nudging the collision groups makes Rapier look again.
-                collider.set_collision_groups(InteractionGroups::none());
-            }
-            collider.set_collision_groups(entry.collision);
-        }
-        // OK since handles in the plan are those of the set as of now: a
-        // slot's bit describes its current collider until the next plan.
+        self.modifying = modifying;
+        self.pinned = pinned;
         self.native_bits.clear();
-        for (handle, entry) in plan.colliders.iter() {
-            let index = handle.into_raw_parts().0 as usize;
-            if index / 64 >= self.native_bits.len() {
-                self.native_bits.resize(index / 64 + 1, 0);
-            }
-            if !entry.hooked() {
-                self.native_bits[index / 64] |= 1 << (index % 64);
-            }
+        let entries: Vec<_> = plan.colliders.iter().map(|(h, e)| (h, *e)).collect();
+        for (handle, entry) in entries {
+            self.configure(colliders, handle, entry);
         }
         self.plan = plan;
         self.replan = false;
-        // Pairs of two native colliders leave the table: their rules follow
-        // from the plan (pinned pairs are hooked, so they stay).
+        self.candidates.clear();
+        self.drop_native_pairs_from_table();
+    }
+
+    /// Plans the candidate colliders alone when the rest of the plan stands
+    /// (see `native::replan_some`), else everything.
+    fn apply_partial_plan(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+        let mut handles = std::mem::take(&mut self.candidates);
+        handles.sort_unstable_by_key(|h| h.into_raw_parts());
+        handles.dedup();
+        let all_hooked = self.all_hooked();
+        let planned = native::replan_some(
+            &self.plan,
+            &self.rules,
+            bodies,
+            colliders,
+            &handles,
+            &self.pinned,
+            all_hooked,
+        );
+        let Some(planned) = planned else {
+            return self.apply_plan(bodies, colliders);
+        };
+        for (handle, entry) in planned {
+            self.configure(colliders, handle, entry);
+            self.plan.colliders.insert(handle, entry);
+        }
+        self.drop_native_pairs_from_table();
+    }
+
+    fn all_hooked(&self) -> bool {
+        !self.planner
+            || self.calculator.is_some()
+            || self.on_created.is_some()
+            || self.policy == RecalculationPolicy::Manual
+    }
+
+    /// Gives one collider the flags, groups and types of its plan entry,
+    /// touching it only if they differ, and keeps the bookkeeping that
+    /// follows (waking, newly hooked colliders, regrouping, native bits).
+    fn configure(
+        &mut self,
+        colliders: &mut ColliderSet,
+        handle: ColliderHandle,
+        entry: ColliderPlan,
+    ) {
+        let before = self.plan.colliders.get(handle).copied();
+        if before.is_some_and(|b| !b.hooked()) && entry.hooked() {
+            self.newly_hooked.push(handle);
+        }
+        if self.policy != RecalculationPolicy::Manual && before.is_some_and(|b| b != entry) {
+            self.to_wake
+                .extend(self.known.get(handle).and_then(|k| k.body));
+        }
+        // OK since handles in the plan are those of the set as of now: a
+        // slot's bit describes its current collider until it is planned again.
+        let index = handle.into_raw_parts().0 as usize;
+        if index / 64 >= self.native_bits.len() {
+            self.native_bits.resize(index / 64 + 1, 0);
+        }
+        let bit = 1 << (index % 64);
+        if entry.hooked() {
+            self.native_bits[index / 64] &= !bit;
+        } else {
+            self.native_bits[index / 64] |= bit;
+        }
+
+        let mut hooks = if entry.hooked() {
+            HOOKS
+        } else {
+            ActiveHooks::empty()
+        };
+        if self.modifying.contains(&handle) {
+            hooks |= ActiveHooks::MODIFY_SOLVER_CONTACTS;
+        }
+        let Some(current) = colliders.get(handle) else {
+            return;
+        };
+        let same = current.active_hooks() == hooks
+            && current.collision_groups() == entry.collision
+            && current.solver_groups() == entry.solver
+            && current.active_collision_types() == entry.types;
+        if same {
+            return;
+        }
+        if current.collision_groups() != entry.collision || current.solver_groups() != entry.solver
+        {
+            self.regrouped.insert(handle);
+        }
+        // A collider of a non-dynamic body may never wake: when the hook
+        // takes over (or lets go of) its pairs, Rapier must look at them.
+        let never_wakes = self.known.get(handle).is_none_or(|k| !k.dynamic);
+        let rehook = before.is_some() && current.active_hooks() != hooks && never_wakes;
+        if rehook {
+            self.regrouped.insert(handle);
+        }
+        // `get_mut` marks a collider modified: only for those that differ.
+        let collider = &mut colliders[handle];
+        collider.set_active_hooks(hooks);
+        collider.set_solver_groups(entry.solver);
+        if collider.active_collision_types() != entry.types || rehook {
+            collider.set_active_collision_types(entry.types);
+            // Changing the collision types alone sets no change flag:
+            // nudging the collision groups makes Rapier look again.
+            collider.set_collision_groups(InteractionGroups::none());
+        }
+        collider.set_collision_groups(entry.collision);
+    }
+
+    /// Pairs of two native colliders leave the table: their rules follow
+    /// from the plan (pinned pairs are hooked, so they stay).
+    fn drop_native_pairs_from_table(&mut self) {
         let plan = &self.plan;
         let hooked = |c| plan.colliders.get(c).is_none_or(|p| p.hooked());
         self.pairs.retain(|key, _| {
@@ -747,6 +846,7 @@ impl RuleHooks {
             hooked(a) || hooked(b)
         });
     }
+
     /// `node` itself if it is a collider, and every collider below it.
     fn colliders_under(
         &self,

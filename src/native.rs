@@ -76,6 +76,9 @@ pub(crate) fn class_rule(rules: &CollisionRuleSet, a: Class, b: Class) -> Collis
 #[derive(Debug, Default)]
 pub(crate) struct Plan {
     pub(crate) colliders: HandleMap<ColliderHandle, ColliderPlan>,
+    /// The settings of each class that has native members: an edit that
+    /// moves a collider into one of these classes plans that collider alone.
+    classes: HashMap<Class, ColliderPlan>,
 }
 
 /// Plans every collider of `colliders`. `pinned` colliders are hooked
@@ -103,20 +106,13 @@ pub(crate) fn plan(
         return plan;
     }
 
-    // Nodes named by a specific entry: their colliders' pairs are per pair.
-    let named: HashSet<Node> = rules
-        .records
-        .live()
-        .flat_map(|record| record.specific.keys().copied())
-        .collect();
-
     // Each collider's class, or None where its chain needs the hook.
     let mut classes: Vec<(ColliderHandle, Option<Class>, bool)> =
         Vec::with_capacity(colliders.len());
     for (handle, collider) in colliders.iter() {
         let dynamic = dynamic_of(collider);
         let class = (!pinned.contains(&handle))
-            .then(|| native_class(rules, bodies, colliders, &named, handle, dynamic))
+            .then(|| native_class(rules, bodies, colliders, handle, dynamic))
             .flatten();
         classes.push((handle, class, dynamic));
     }
@@ -231,9 +227,45 @@ pub(crate) fn plan(
                 }
             }
         };
+        if let Some(class) = entry.class {
+            plan.classes.insert(class, entry);
+        }
         plan.colliders.insert(handle, entry);
     }
     plan
+}
+
+/// Plans `handles` alone, against the rest of `plan`: possible when each of
+/// them ends up hooked or in a class the plan already has (the bits and
+/// filters of every group then stay as they are). `None`: plan everything.
+pub(crate) fn replan_some(
+    plan: &Plan,
+    rules: &CollisionRuleSet,
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    handles: &[ColliderHandle],
+    pinned: &HashSet<ColliderHandle>,
+    all_hooked: bool,
+) -> Option<Vec<(ColliderHandle, ColliderPlan)>> {
+    let mut planned = Vec::with_capacity(handles.len());
+    for &handle in handles {
+        let Some(collider) = colliders.get(handle) else {
+            continue;
+        };
+        let dynamic = collider
+            .parent()
+            .and_then(|b| bodies.get(b))
+            .is_some_and(|b| b.is_dynamic());
+        let class = (!all_hooked && !pinned.contains(&handle))
+            .then(|| native_class(rules, bodies, colliders, handle, dynamic))
+            .flatten();
+        let entry = match class {
+            None => ColliderPlan::hooked_plan(dynamic),
+            Some(class) => *plan.classes.get(&class)?,
+        };
+        planned.push((handle, entry));
+    }
+    Some(planned)
 }
 
 /// The class of collider `leaf`, or `None` if its chain carries per-pair
@@ -242,14 +274,13 @@ fn native_class(
     rules: &CollisionRuleSet,
     bodies: &RigidBodySet,
     colliders: &ColliderSet,
-    named: &HashSet<Node>,
     leaf: ColliderHandle,
     dynamic: bool,
 ) -> Option<Class> {
     let mut group = None;
     let mut node = Some(Node::Collider(leaf));
     while let Some(current) = node {
-        if named.contains(&current) {
+        if rules.is_named(current) {
             return None;
         }
         if let Some(record) = rules.record(current) {

@@ -120,6 +120,22 @@ impl<H: Handle, V> HandleMap<H, V> {
             .map(|(_, value)| value)
     }
 
+    /// Stores `value` for `handle` and returns the handle and value of an
+    /// older generation the slot held, if any.
+    pub(crate) fn insert_evicting(&mut self, handle: H, value: V) -> Option<(H, V)> {
+        let (index, generation) = handle.raw_parts();
+        let index = index as usize;
+        if index >= self.slots.len() {
+            self.slots.resize_with(index + 1, || None);
+        }
+        match self.slots[index].replace((generation, value)) {
+            Some((old, value)) if old != generation => {
+                Some((H::from_raw(index as u32, old), value))
+            }
+            _ => None,
+        }
+    }
+
     pub(crate) fn remove(&mut self, handle: H) -> Option<V> {
         let (index, generation) = handle.raw_parts();
         let slot = self.slots.get_mut(index as usize)?;

@@ -43,10 +43,6 @@ impl PairKey {
     pub(crate) fn colliders(self) -> (ColliderHandle, ColliderHandle) {
         (self.0, self.1)
     }
-
-    pub(crate) fn involves(self, collider: ColliderHandle) -> bool {
-        self.0 == collider || self.1 == collider
-    }
 }
 
 /// Solver contacts frozen in each body's frame.

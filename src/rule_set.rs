@@ -66,13 +66,15 @@ impl Records {
             .expect("a node names a freed record")
     }
 
-    fn release(&mut self, id: RecordId) {
+    /// Lets one user go; returns the record if that was its last user.
+    fn release(&mut self, id: RecordId) -> Option<Record> {
         let record = self.get_mut(id);
         record.users -= 1;
-        if record.users == 0 {
-            self.slots[id.0 as usize] = None;
-            self.free.push(id.0);
+        if record.users > 0 {
+            return None;
         }
+        self.free.push(id.0);
+        self.slots[id.0 as usize].take()
     }
 
     pub(crate) fn live(&self) -> impl Iterator<Item = &Record> + '_ {
@@ -118,10 +120,6 @@ impl Changes {
         self.nodes = Vec::new();
     }
 
-    pub(crate) fn is_empty(&self) -> bool {
-        !self.everything && self.records.is_empty() && self.nodes.is_empty()
-    }
-
     fn cap(&mut self) {
         if self.records.len() + self.nodes.len() > CHANGE_LOG_LIMIT {
             self.everything();
@@ -159,6 +157,8 @@ pub struct CollisionRuleSet {
     pub(crate) records: Records,
     pub(crate) hierarchy: Hierarchy,
     changes: Changes,
+    /// How many specific entries name each node (the planner asks).
+    named: HashMap<Node, u32>,
 }
 
 impl Default for CollisionRuleSet {
@@ -171,6 +171,7 @@ impl Default for CollisionRuleSet {
             records: Records::default(),
             hierarchy: Hierarchy::default(),
             changes: Changes::default(),
+            named: HashMap::new(),
         }
     }
 }
@@ -386,8 +387,32 @@ impl CollisionRuleSet {
             Node::Body(handle) => self.body_records.insert(handle, id),
         };
         if let Some(previous) = previous {
-            self.records.release(previous);
+            self.release(previous);
         }
+    }
+
+    /// Lets one user of record `id` go; a freed record's entries no longer
+    /// name anyone.
+    fn release(&mut self, id: RecordId) {
+        if let Some(freed) = self.records.release(id) {
+            for other in freed.specific.keys() {
+                self.unname(*other);
+            }
+        }
+    }
+
+    fn unname(&mut self, node: Node) {
+        if let Some(count) = self.named.get_mut(&node) {
+            *count -= 1;
+            if *count == 0 {
+                self.named.remove(&node);
+            }
+        }
+    }
+
+    /// Whether any specific entry names `node`.
+    pub(crate) fn is_named(&self, node: Node) -> bool {
+        self.named.contains_key(&node)
     }
 
     /// Lets go of `node`'s record.
@@ -397,7 +422,7 @@ impl CollisionRuleSet {
             Node::Body(handle) => self.body_records.remove(handle),
         };
         if let Some(previous) = previous {
-            self.records.release(previous);
+            self.release(previous);
         }
     }
 
@@ -496,7 +521,9 @@ impl CollisionRuleSet {
         if rule == CollisionRule::Defer {
             self.remove_specific(node, other);
         } else if let Some(record) = self.record_mut(node) {
-            record.specific.insert(other, rule);
+            if record.specific.insert(other, rule).is_none() {
+                *self.named.entry(other).or_default() += 1;
+            }
             self.touch(node);
             self.changes.node(other);
         }
@@ -515,7 +542,9 @@ impl CollisionRuleSet {
     pub fn remove_specific(&mut self, node: impl Into<Node>, other: impl Into<Node>) {
         let (node, other) = (node.into(), other.into());
         if let Some(id) = self.record_id(node) {
-            self.records.get_mut(id).specific.remove(&other);
+            if self.records.get_mut(id).specific.remove(&other).is_some() {
+                self.unname(other);
+            }
             self.tidy(node);
             self.changes.node(other);
         }
@@ -702,6 +731,7 @@ impl CollisionRuleSet {
         for record in self.records.live_mut() {
             record.specific.remove(&node);
         }
+        self.named.remove(&node);
         if let Node::Body(body) = node {
             for (child, parent) in self.hierarchy.links() {
                 if parent == body {

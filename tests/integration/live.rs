@@ -257,7 +257,7 @@ impl Run {
 
 proptest! {
     #![proptest_config(Config {
-        cases: 96,
+        cases: 256,
         rng_seed: RngSeed::Fixed(0x11fe_9a11),
         failure_persistence: None,
         ..Config::default()

@@ -7,6 +7,7 @@ mod live;
 mod properties;
 mod reference;
 mod scenes;
+mod stability;
 mod vectors;
 
 #[global_allocator]

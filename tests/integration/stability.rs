@@ -1,0 +1,232 @@
+//! Stability where methods fail, each with its measured figure (quoted in
+//! `docs/stability.md`): a deep overlap switched from `NoResponse` to
+//! `Normal`, a stack that ghosts pass through, and a heavy compound with
+//! group rules.
+
+use rapier_collision_rules::{
+    CollisionGroup, CollisionRule, CollisionRuleSet, RuleError, RuleHooks,
+};
+use rapier3d::prelude::*;
+
+/// Two unit cubes overlapping by `depth` on a ground slab, `NoResponse`
+/// between them, switched to `Normal` after one step; returns the peak
+/// separation speed over the next second. With `gentle`, the switch goes
+/// through `NoContacts` until the two no longer overlap.
+fn overlap_switch(depth: f32, gentle: bool) -> f32 {
+    let mut world = PhysicsWorld::new();
+    let ground =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+    world.insert_collider(ColliderBuilder::cuboid(20.0, 0.5, 20.0), Some(ground));
+    let a = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.5, 0.0)));
+    let b = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(
+        1.0 - depth,
+        0.5,
+        0.0,
+    )));
+    let ca = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(a));
+    let cb = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(b));
+    let mut rules = CollisionRuleSet::default();
+    rules.set_specific(a, b, CollisionRule::NoResponse);
+    let mut hooks = RuleHooks::new(rules);
+    hooks.step(&mut world);
+    hooks.rules_mut().set_specific(a, b, CollisionRule::Normal);
+    let mut peak: f32 = 0.0;
+    for _ in 0..60 {
+        hooks.step(&mut world);
+        if gentle {
+            // Let the solver push them apart only as fast as gravity-free
+            // contact softness allows: keep them pairless until apart.
+            let apart = !world
+                .narrow_phase
+                .contact_pair(ca, cb)
+                .is_some_and(|p| p.has_any_active_contact());
+            let rule = if apart {
+                CollisionRule::Normal
+            } else {
+                CollisionRule::NoResponse
+            };
+            hooks.rules_mut().set_specific(a, b, rule);
+            if !apart {
+                // Separate them by hand, 1 cm a step, as a game would.
+                let pa = world.bodies[a].translation();
+                world.bodies[a].set_translation(pa - Vector::new(0.01, 0.0, 0.0), true);
+            }
+        }
+        let relative = world.bodies[b].linvel() - world.bodies[a].linvel();
+        peak = peak.max(relative.length());
+    }
+    peak
+}
+
+#[test]
+fn switching_a_deep_overlap_to_normal_separates_and_a_staged_switch_is_gentle() {
+    let abrupt = overlap_switch(0.5, false);
+    let gentle = overlap_switch(0.5, true);
+    println!("peak separation speed: abrupt {abrupt:.2} m/s, staged {gentle:.2} m/s");
+    assert!(abrupt > 0.1, "the overlap did not push apart: {abrupt} m/s");
+    assert!(
+        gentle < abrupt,
+        "the staged switch was not gentler: {gentle} vs {abrupt} m/s"
+    );
+}
+
+/// How ghosts are made in [`stack_drift`].
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Ghosts {
+    None,
+    /// Plain Rapier: solver groups that leave the stack out.
+    RapierSolverGroups,
+    /// This crate: a group whose rule with everything is `NoResponse`.
+    GroupRule,
+    /// This crate: a personal `NoResponse` (the hook decides).
+    Personal,
+}
+
+/// A 20-box stack, with five ghosts falling through it; returns the stack's
+/// largest horizontal drift after 3 s.
+fn stack_drift(ghosts: Ghosts) -> f32 {
+    let mut world = PhysicsWorld::new();
+    let ground =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+    world.insert_collider(ColliderBuilder::cuboid(20.0, 0.5, 20.0), Some(ground));
+    let stack: Vec<_> = (0..20)
+        .map(|i| {
+            let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(
+                0.0,
+                0.5 + i as f32,
+                0.0,
+            )));
+            world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
+            body
+        })
+        .collect();
+    let mut rules = CollisionRuleSet::default();
+    let spirits = rules.create_group();
+    for g in [
+        CollisionGroup::DEFAULT_DYNAMIC,
+        CollisionGroup::DEFAULT_KINEMATIC,
+    ] {
+        rules.set_group_rule(spirits, g, CollisionRule::NoResponse);
+    }
+    if ghosts != Ghosts::None {
+        for i in 0..5 {
+            let ghost = world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .translation(Vector::new(0.2, 25.0 + 3.0 * i as f32, 0.1))
+                    .gravity_scale(0.0)
+                    .linvel(Vector::new(0.0, -8.0, 0.0)),
+            );
+            let shape = world.insert_collider(ColliderBuilder::ball(0.6), Some(ghost));
+            match ghosts {
+                Ghosts::RapierSolverGroups => {
+                    let bit = Group::from_bits_retain(2);
+                    let groups = InteractionGroups::new(
+                        bit,
+                        Group::ALL - Group::ALL,
+                        InteractionTestMode::And,
+                    );
+                    world.colliders[shape].set_solver_groups(groups);
+                }
+                Ghosts::GroupRule => rules.set_group(ghost, Some(spirits)),
+                Ghosts::Personal => rules.set_personal(ghost, CollisionRule::NoResponse),
+                Ghosts::None => {}
+            }
+        }
+    }
+    let mut hooks = RuleHooks::new(rules);
+    for _ in 0..180 {
+        if ghosts == Ghosts::RapierSolverGroups {
+            world.step();
+        } else {
+            hooks.step(&mut world);
+        }
+    }
+    stack
+        .iter()
+        .map(|&b| {
+            let p = world.bodies[b].translation();
+            (p.x * p.x + p.z * p.z).sqrt()
+        })
+        .fold(0.0, f32::max)
+}
+
+#[test]
+fn ghosts_passing_through_a_stack_drift_it_as_plain_rapier_does() {
+    let drift = [
+        Ghosts::None,
+        Ghosts::RapierSolverGroups,
+        Ghosts::GroupRule,
+        Ghosts::Personal,
+    ]
+    .map(stack_drift);
+    println!(
+        "20-box stack drift after 3 s: alone {:.4} m; ghosts by Rapier solver groups {:.4} m, \
+         by a group rule {:.4} m, by a personal rule {:.4} m",
+        drift[0], drift[1], drift[2], drift[3]
+    );
+    assert_eq!(
+        drift[2], drift[1],
+        "group-rule ghosts differ from Rapier's own solver groups"
+    );
+    for (what, d) in [
+        ("solver-group", drift[1]),
+        ("group-rule", drift[2]),
+        ("personal", drift[3]),
+    ] {
+        assert!(d < 0.05, "the {what} ghosts toppled the stack: drift {d} m");
+    }
+}
+
+#[test]
+fn a_heavy_compound_with_group_rules_rests() -> Result<(), RuleError> {
+    let mut world = PhysicsWorld::new();
+    let ground =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+    world.insert_collider(ColliderBuilder::cuboid(20.0, 0.5, 20.0), Some(ground));
+    // A heavy hull with a light mast jointed on top, overlapping it: masses
+    // 16 and 0.16, a ratio of 100:1.
+    let hull =
+        world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.5, 0.0)));
+    world.insert_collider(
+        ColliderBuilder::cuboid(1.0, 0.5, 1.0).density(4.0),
+        Some(hull),
+    );
+    let mast =
+        world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.4, 0.0)));
+    world.insert_collider(
+        ColliderBuilder::cuboid(0.2, 0.5, 0.2).density(1.0),
+        Some(mast),
+    );
+    let joint = FixedJointBuilder::new()
+        .local_anchor1(Vector::new(0.0, 0.9, 0.0))
+        .local_anchor2(Vector::ZERO);
+    world.insert_impulse_joint(hull, mast, joint);
+    let mut rules = CollisionRuleSet::default();
+    let ship = rules.create_group();
+    rules.set_group_rule(ship, ship, CollisionRule::NoPair);
+    rules.set_group(hull, Some(ship));
+    rules.set_parent(mast, hull)?;
+    let ratio = world.bodies[hull].mass() / world.bodies[mast].mass();
+    let mut hooks = RuleHooks::new(rules);
+    let mut peak: f32 = 0.0;
+    for step in 0..240 {
+        hooks.step(&mut world);
+        if step > 60 {
+            peak = peak.max(world.bodies[mast].linvel().length());
+        }
+    }
+    let (hy, my) = (
+        world.bodies[hull].translation().y,
+        world.bodies[mast].translation().y,
+    );
+    println!(
+        "mass ratio {ratio:.0}:1; rest at hull y = {hy:.3}, mast y = {my:.3}; peak mast speed after 1 s {peak:.4} m/s"
+    );
+    assert!(ratio > 90.0, "mass ratio {ratio}");
+    assert!(
+        (hy - 0.5).abs() < 0.02 && (my - 1.4).abs() < 0.05,
+        "did not rest: hull {hy}, mast {my}"
+    );
+    assert!(peak < 0.05, "the compound jitters: {peak} m/s");
+    Ok(())
+}

@@ -120,11 +120,7 @@ fn stack_drift(ghosts: Ghosts) -> f32 {
             match ghosts {
                 Ghosts::RapierSolverGroups => {
                     let bit = Group::from_bits_retain(2);
-                    let groups = InteractionGroups::new(
-                        bit,
-                        Group::ALL - Group::ALL,
-                        InteractionTestMode::And,
-                    );
+                    let groups = InteractionGroups::new(bit, Group::NONE, InteractionTestMode::And);
                     world.colliders[shape].set_solver_groups(groups);
                 }
                 Ghosts::GroupRule => rules.set_group(ghost, Some(spirits)),

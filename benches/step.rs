@@ -177,21 +177,37 @@ fn step(c: &mut Criterion) {
     group.finish();
 }
 
-/// The cost of an edit: one body's group changes, and the next `prepare`
-/// plans again.
+/// The cost of an edit: the next `prepare` with nothing edited, and with one
+/// body moved between two groups the pile already uses (only its collider
+/// is planned again), or into a group no collider uses yet (everything is).
 fn edit(c: &mut Criterion) {
     let mut group = c.benchmark_group("edit");
     for n in [1000, 4000] {
         let (mut world, boxes) = pile(n);
-        let mut hooks = RuleHooks::new(variant_rules("groups", &boxes));
+        let rules = variant_rules("groups", &boxes);
+        let used = [rules.group(boxes[0].0), rules.group(boxes[10].0)].map(|g| g.expect("a group"));
+        let mut hooks = RuleHooks::new(rules);
         hooks.step(&mut world);
-        let spare = hooks.rules_mut().create_group();
+        let body = boxes[n / 2].0;
+        group.bench_function(BenchmarkId::new("prepare", n), |b| {
+            b.iter(|| hooks.prepare(&world.bodies, &mut world.colliders))
+        });
         let mut flip = false;
         group.bench_function(BenchmarkId::new("set_group+prepare", n), |b| {
             b.iter(|| {
                 flip = !flip;
-                let body = boxes[n / 2].0;
-                hooks.rules_mut().set_group(body, flip.then_some(spare));
+                hooks
+                    .rules_mut()
+                    .set_group(body, Some(used[usize::from(flip)]));
+                hooks.prepare(&world.bodies, &mut world.colliders);
+            })
+        });
+        let spare = hooks.rules_mut().create_group();
+        group.bench_function(BenchmarkId::new("new_group+prepare", n), |b| {
+            b.iter(|| {
+                flip = !flip;
+                let g = if flip { spare } else { used[0] };
+                hooks.rules_mut().set_group(body, Some(g));
                 hooks.prepare(&world.bodies, &mut world.colliders);
             })
         });
@@ -228,9 +244,12 @@ criterion_group!(benches, step, edit);
 
 fn main() {
     // STEP_PAIRED_ONLY=1 skips the criterion runs.
+    // STEP_CRITERION_ONLY=1 skips the paired ratios.
     if std::env::var_os("STEP_PAIRED_ONLY").is_none() {
         benches();
     }
-    paired();
+    if std::env::var_os("STEP_CRITERION_ONLY").is_none() {
+        paired();
+    }
     Criterion::default().configure_from_args().final_summary();
 }

@@ -861,3 +861,56 @@ fn group_rules_step_exactly_as_the_same_rapier_groups() {
     }
     assert_eq!(hooks.hooked_count(), 0, "group rules needed the hook");
 }
+
+#[test]
+fn more_groups_than_bits_fall_back_to_the_hook_and_stay_exact() {
+    // 40 boxes in a row, each in its own group, each touching the next; every
+    // second neighbour relation is NoPair: 40 groups with native relations,
+    // more than Rapier's 32 bits.
+    let mut world = PhysicsWorld::new();
+    world.gravity = Vector::ZERO;
+    let mut rules = CollisionRuleSet::default();
+    let mut boxes = Vec::new();
+    for i in 0..40 {
+        let body = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .translation(Vector::new(i as f32 * 0.95, 0.0, 0.0))
+                .locked_axes(LockedAxes::all()),
+        );
+        let collider = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
+        let group = rules.create_group();
+        rules.set_group(body, Some(group));
+        boxes.push((collider, group));
+    }
+    for pair in boxes.windows(2).step_by(2) {
+        rules.set_group_rule(pair[0].1, pair[1].1, NoPair);
+    }
+    let mut hooks = RuleHooks::new(rules);
+    hooks.step(&mut world);
+    hooks.step(&mut world);
+    let hooked = hooks.hooked_count();
+    assert!(
+        hooked >= 8,
+        "40 related groups fit in 32 bits? {hooked} hooked"
+    );
+    for (i, pair) in boxes.windows(2).enumerate() {
+        let (a, b) = (pair[0].0, pair[1].0);
+        let touching = world
+            .narrow_phase
+            .contact_pair(a, b)
+            .is_some_and(|p| p.has_any_active_contact());
+        let expected = i % 2 == 1;
+        assert_eq!(
+            touching,
+            expected,
+            "boxes {i} and {}: touching {touching}",
+            i + 1
+        );
+        assert_eq!(
+            hooks.pair_rule(a, b).is_some(),
+            expected,
+            "boxes {i} and {}",
+            i + 1
+        );
+    }
+}

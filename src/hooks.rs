@@ -146,8 +146,6 @@ pub struct RuleHooks {
     /// Colliders whose groups the last plan changed. Rapier drops and finds
     /// their pairs again, so their table entries outlive one absence.
     regrouped: HashSet<ColliderHandle>,
-    /// The size of the body set at the last check for removed bodies.
-    body_count: usize,
     /// One bit per collider slot: set for native colliders (read by the
     /// after-step scan of Rapier's pairs, which must stay cheap).
     native_bits: Vec<u64>,
@@ -195,7 +193,6 @@ impl RuleHooks {
             newly_hooked: Vec::new(),
             native_pairs: Vec::new(),
             regrouped: HashSet::new(),
-            body_count: usize::MAX,
             native_bits: Vec::new(),
         }
     }
@@ -460,15 +457,11 @@ impl RuleHooks {
     /// then [`after_step`](Self::after_step).
     pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
         self.step += 1;
-        let (mut changed, removed) = self.sync_colliders(bodies, colliders);
-        // Bodies removed through Rapier: the set shrank, or colliders went
-        // with them (a removal and an insertion between two steps leave a
-        // stale rule behind only until the next change; it can never match
-        // the new body, whose handle has another generation).
-        if removed || bodies.len() != self.body_count {
-            self.body_count = bodies.len();
-            self.rules.remove_missing(bodies, colliders);
-        }
+        let mut changed = self.sync_colliders(bodies, colliders);
+        // Objects removed through Rapier (bodies without colliders, slots
+        // reused since the last step, edits through dead handles): forgotten
+        // by one sweep over the rule set's own nodes, links and entries.
+        self.rules.remove_missing(bodies, colliders);
         let changes = self.rules.take_changes();
         match self.rules.touched_nodes(&changes) {
             Some(touched) => changed.extend(touched),
@@ -632,11 +625,7 @@ impl RuleHooks {
 
     /// Notices colliders added, removed, moved to another body, or whose
     /// body changed type; returns the nodes whose chains changed.
-    fn sync_colliders(
-        &mut self,
-        bodies: &RigidBodySet,
-        colliders: &ColliderSet,
-    ) -> (Vec<Node>, bool) {
+    fn sync_colliders(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> Vec<Node> {
         // One pass over the set (Rapier's memory is the cost here), then one
         // over the hooks' own compact table for what was not seen.
         let step = self.step;
@@ -700,7 +689,7 @@ impl RuleHooks {
                 self.rules.remove_node(body);
             }
         }
-        (changed, !removed.is_empty())
+        changed
     }
 
     /// Plans every collider again (see `native.rs`) and gives each the

@@ -21,6 +21,10 @@ pub(crate) struct Record {
 }
 
 impl Record {
+    pub(crate) fn users(&self) -> u32 {
+        self.users
+    }
+
     fn is_empty(&self) -> bool {
         self.personal == CollisionRule::Defer && self.group.is_none() && self.specific.is_empty()
     }
@@ -29,6 +33,12 @@ impl Record {
 /// The index of a record in [`Records`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) struct RecordId(u32);
+
+impl RecordId {
+    pub(crate) fn index(self) -> u32 {
+        self.0
+    }
+}
 
 /// The records, in an arena with a free list.
 #[derive(Clone, Debug, Default)]
@@ -79,6 +89,13 @@ impl Records {
 
     pub(crate) fn live(&self) -> impl Iterator<Item = &Record> + '_ {
         self.slots.iter().flatten()
+    }
+
+    pub(crate) fn iter_with_ids(&self) -> impl Iterator<Item = (RecordId, &Record)> + '_ {
+        self.slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, slot)| slot.as_ref().map(|r| (RecordId(i as u32), r)))
     }
 
     fn live_mut(&mut self) -> impl Iterator<Item = &mut Record> + '_ {
@@ -373,6 +390,8 @@ impl CollisionRuleSet {
                     ..Record::default()
                 });
                 self.attach(node, id);
+                // A node that starts carrying rules is an edit of its own.
+                self.changes.node(node);
                 id
             }
         };
@@ -413,6 +432,14 @@ impl CollisionRuleSet {
     /// Whether any specific entry names `node`.
     pub(crate) fn is_named(&self, node: Node) -> bool {
         self.named.contains_key(&node)
+    }
+
+    pub(crate) fn named_nodes(&self) -> impl Iterator<Item = &Node> + '_ {
+        self.named.keys()
+    }
+
+    pub(crate) fn named_count(&self, node: Node) -> u32 {
+        self.named.get(&node).copied().unwrap_or(0)
     }
 
     /// Lets go of `node`'s record.
@@ -680,6 +707,8 @@ impl CollisionRuleSet {
     ) -> Result<(), RuleError> {
         self.hierarchy.set_parent(child, parent)?;
         self.changes.node(Node::Body(child));
+        // Logged too, so that a parent already removed is noticed.
+        self.changes.node(Node::Body(parent));
         Ok(())
     }
 

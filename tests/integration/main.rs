@@ -2,6 +2,7 @@
 //! property tests against a naive reference resolver, and error values.
 
 mod alloc;
+mod driver;
 mod errors;
 mod live;
 mod properties;
@@ -9,6 +10,7 @@ mod reference;
 mod scenes;
 mod stability;
 mod vectors;
+mod world;
 
 #[global_allocator]
 static ALLOCATOR: alloc::Counting = alloc::Counting;

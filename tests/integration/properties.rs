@@ -341,6 +341,14 @@ impl Run {
                 assert_eq!(why.rule, got, "explain disagrees with resolve: {why:?}");
             }
         }
+        // Whatever was edited, forgetting what left the world leaves it clean.
+        let mut swept = self.rules.clone();
+        swept.remove_missing(bodies, colliders);
+        assert_eq!(
+            swept.validate(bodies, colliders),
+            Ok(()),
+            "not clean after remove_missing"
+        );
         for i in 0..self.bodies.len() + self.colliders.len() {
             let node = self.node(i);
             let record = self.model.record(node);

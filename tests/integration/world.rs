@@ -1,0 +1,233 @@
+//! The world the live-pair property tests, the fuzz driver and the soak
+//! test edit and step: a ground slab and boxes, `RuleHooks`, and every edit
+//! a user can make, each followed by checks of the hooks' invariants.
+
+use rapier_collision_rules::{CollisionGroup, CollisionRule, Node, RuleHooks};
+use rapier3d::prelude::*;
+
+#[derive(Clone, Debug)]
+pub enum Edit {
+    Personal(usize, CollisionRule),
+    Group(usize, Option<usize>),
+    Specific(usize, usize, CollisionRule),
+    GroupRule(usize, usize, CollisionRule),
+    Parent(usize, usize),
+    Unparent(usize),
+    Share(usize, usize),
+    DefaultRule(CollisionRule),
+    Kind(usize, usize),
+    RemoveCollider(usize),
+    RemoveBody(usize),
+    AddCube(f32, f32, usize),
+    Step(usize),
+}
+
+pub const KINDS: [RigidBodyType; 3] = [
+    RigidBodyType::Dynamic,
+    RigidBodyType::KinematicPositionBased,
+    RigidBodyType::Fixed,
+];
+pub const GROUPS: usize = 4;
+
+/// A handle's raw parts, to sort and compare pairs.
+pub type Raw = (u32, u32);
+
+pub struct Run {
+    pub world: PhysicsWorld,
+    /// Dynamic bodies are created with all axes locked (they never move).
+    locked: bool,
+    pub hooks: RuleHooks,
+    groups: Vec<CollisionGroup>,
+    bodies: Vec<RigidBodyHandle>,
+    colliders: Vec<ColliderHandle>,
+    removed: Vec<ColliderHandle>,
+}
+
+impl Run {
+    pub fn new(cubes: &[(f32, f32, usize)], planner: bool, locked: bool) -> Run {
+        let mut world = PhysicsWorld::new();
+        if locked {
+            world.gravity = Vector::ZERO;
+        }
+        // Recycling makes native pairs' contacts differ in the last bits from
+        // hooked ones; without it the two runs can be compared exactly.
+        world.integration_parameters.contact_recycling = !locked;
+        let ground =
+            world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+        let floor = world.insert_collider(ColliderBuilder::cuboid(5.0, 0.5, 5.0), Some(ground));
+        let mut hooks = RuleHooks::default();
+        hooks.set_planner(planner);
+        let mut groups = vec![
+            CollisionGroup::DEFAULT_DYNAMIC,
+            CollisionGroup::DEFAULT_KINEMATIC,
+        ];
+        groups.extend((2..GROUPS).map(|_| hooks.rules_mut().create_group()));
+        let mut run = Run {
+            world,
+            locked,
+            hooks,
+            groups,
+            bodies: vec![ground],
+            colliders: vec![floor],
+            removed: Vec::new(),
+        };
+        for &(x, y, kind) in cubes {
+            run.add_cube(x, y, kind);
+        }
+        run
+    }
+
+    fn add_cube(&mut self, x: f32, y: f32, kind: usize) {
+        let mut builder = RigidBodyBuilder::new(KINDS[kind]).translation(Vector::new(x, y, 0.0));
+        if self.locked {
+            builder = builder.locked_axes(LockedAxes::all()).can_sleep(false);
+        }
+        let body = self.world.insert_body(builder);
+        let collider = self
+            .world
+            .insert_collider(ColliderBuilder::cuboid(0.4, 0.4, 0.4), Some(body));
+        self.bodies.push(body);
+        self.colliders.push(collider);
+    }
+
+    fn node(&self, i: usize) -> Node {
+        let i = i % (self.bodies.len() + self.colliders.len());
+        match i.checked_sub(self.bodies.len()) {
+            None => Node::Body(self.bodies[i]),
+            Some(c) => Node::Collider(self.colliders[c]),
+        }
+    }
+
+    fn body(&self, i: usize) -> RigidBodyHandle {
+        self.bodies[i % self.bodies.len()]
+    }
+
+    pub fn apply(&mut self, edit: &Edit) {
+        let groups = self.groups.clone();
+        match *edit {
+            Edit::Personal(x, r) => {
+                let node = self.node(x);
+                self.hooks.rules_mut().set_personal(node, r);
+            }
+            Edit::Group(x, g) => {
+                let node = self.node(x);
+                self.hooks.rules_mut().set_group(node, g.map(|g| groups[g]));
+            }
+            Edit::Specific(x, y, r) => {
+                let (node, other) = (self.node(x), self.node(y));
+                self.hooks.rules_mut().set_specific(node, other, r);
+            }
+            Edit::GroupRule(a, b, r) => self
+                .hooks
+                .rules_mut()
+                .set_group_rule(groups[a], groups[b], r),
+            Edit::Parent(c, p) => {
+                let (child, parent) = (self.body(c), self.body(p));
+                let _ = self.hooks.rules_mut().set_parent(child, parent);
+            }
+            Edit::Unparent(c) => {
+                let child = self.body(c);
+                self.hooks.rules_mut().remove_parent(child);
+            }
+            Edit::Share(a, b) => {
+                let (from, to) = (self.node(a), self.node(b));
+                self.hooks.rules_mut().share_rules(from, to);
+            }
+            Edit::DefaultRule(r) => self.hooks.rules_mut().set_default_rule(r),
+            Edit::Kind(b, k) => {
+                let handle = self.body(b);
+                if let Some(body) = self.world.bodies.get_mut(handle) {
+                    body.set_body_type(KINDS[k], true);
+                }
+            }
+            Edit::RemoveCollider(c) => {
+                let handle = self.colliders[c % self.colliders.len()];
+                if self.world.remove_collider(handle).is_some() {
+                    self.removed.push(handle);
+                }
+            }
+            Edit::RemoveBody(b) => {
+                let handle = self.body(b);
+                if let Some(body) = self.world.remove_body(handle) {
+                    self.removed.extend_from_slice(body.colliders());
+                }
+            }
+            Edit::AddCube(x, y, kind) => self.add_cube(x, y, kind),
+            Edit::Step(n) => {
+                for _ in 0..n {
+                    self.step();
+                }
+            }
+        }
+    }
+
+    pub fn step(&mut self) {
+        self.hooks.step(&mut self.world);
+        self.check();
+    }
+
+    /// The live pairs with their rules, sorted.
+    pub fn live(&self) -> Vec<(Raw, Raw, CollisionRule)> {
+        let mut live: Vec<_> = self
+            .hooks
+            .pairs()
+            .map(|(a, b, rule)| {
+                let (a, b) = (a.into_raw_parts(), b.into_raw_parts());
+                (a.min(b), a.max(b), rule)
+            })
+            .collect();
+        live.sort();
+        live
+    }
+
+    /// The pairs with contacts, sorted.
+    pub fn touching(&self) -> Vec<(Raw, Raw)> {
+        let mut touching: Vec<_> = self
+            .world
+            .narrow_phase
+            .contact_pairs()
+            .filter(|pair| pair.has_any_active_contact())
+            .map(|pair| {
+                let (a, b) = (
+                    pair.collider1.into_raw_parts(),
+                    pair.collider2.into_raw_parts(),
+                );
+                (a.min(b), a.max(b))
+            })
+            .collect();
+        touching.sort();
+        touching
+    }
+
+    fn check(&self) {
+        let (bodies, colliders) = (&self.world.bodies, &self.world.colliders);
+        let rules = self.hooks.rules();
+        for (a, b, rule) in self.hooks.pairs() {
+            assert!(
+                colliders.contains(a) && colliders.contains(b),
+                "live pair ({a:?}, {b:?}) names a removed collider"
+            );
+            let fresh = rules.resolve(bodies, colliders, a, b);
+            assert_eq!(rule, fresh, "live pair ({a:?}, {b:?}) is stale");
+            assert_ne!(rule, CollisionRule::NoPair);
+        }
+        for pair in self.world.narrow_phase.contact_pairs() {
+            let (a, b) = (pair.collider1, pair.collider2);
+            let expected = Some(rules.resolve(bodies, colliders, a, b))
+                .filter(|&r| r != CollisionRule::NoPair);
+            assert_eq!(
+                self.hooks.pair_rule(a, b),
+                expected,
+                "Rapier's pair ({a:?}, {b:?})"
+            );
+        }
+        assert_eq!(
+            rules.validate(bodies, colliders),
+            Ok(()),
+            "the rule set is not clean"
+        );
+        for &gone in &self.removed {
+            assert!(self.hooks.pairs().all(|(a, b, _)| a != gone && b != gone));
+        }
+    }
+}

@@ -236,6 +236,14 @@ impl RuleHooks {
         self.planner
     }
 
+    /// How many pairs the hooks keep state for (hooked live pairs, `NoPair`
+    /// pairs the hook refuses, overrides): a diagnostic, bounded by the
+    /// number of pairs in Rapier's narrow phase.
+    #[must_use]
+    pub fn tracked_pairs(&self) -> usize {
+        self.pairs.iter().count()
+    }
+
     /// How many colliders carry the hook flag as of the last plan.
     #[must_use]
     pub fn hooked_count(&self) -> usize {

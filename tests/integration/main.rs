@@ -8,6 +8,7 @@ mod live;
 mod properties;
 mod reference;
 mod scenes;
+mod soak;
 mod stability;
 mod vectors;
 mod world;

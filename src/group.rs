@@ -26,6 +26,7 @@ use crate::CollisionRule;
 #[doc(alias = "layer")]
 #[doc(alias = "mask")]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CollisionGroup(u32);
 
 impl CollisionGroup {
@@ -77,6 +78,20 @@ impl GroupTable {
         let group = CollisionGroup(self.next_id);
         self.next_id += 1;
         group
+    }
+
+    /// Replaces the table with saved entries and a saved group count.
+    #[cfg(feature = "serde")]
+    pub(crate) fn restore(
+        &mut self,
+        group_count: u32,
+        entries: Vec<(CollisionGroup, CollisionGroup, CollisionRule)>,
+    ) {
+        self.entries.clear();
+        self.next_id = group_count.max(2);
+        for (a, b, rule) in entries {
+            self.set(a, b, rule);
+        }
     }
 
     /// How many groups exist: the built-in two plus every created one.

@@ -12,6 +12,8 @@ mod pairs;
 mod resolve;
 mod rule;
 mod rule_set;
+#[cfg(feature = "serde")]
+mod snapshot;
 
 pub use error::RuleError;
 pub use group::CollisionGroup;

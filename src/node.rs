@@ -17,6 +17,7 @@ use rapier3d::prelude::{ColliderHandle, RigidBodyHandle};
 /// assert_eq!(Node::from(body), Node::Body(body));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Node {
     /// A collider: a leaf of every chain.
     Collider(ColliderHandle),

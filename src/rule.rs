@@ -27,6 +27,7 @@ use rapier3d::prelude::SolverFlags;
 #[doc(alias = "filter")]
 #[doc(alias = "ignore")]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CollisionRule {
     /// No decision here: the next, more general stage decides.
     #[default]

@@ -150,6 +150,10 @@ impl Changes {
 /// Rules are decided per pair of colliders by [`resolve`](Self::resolve),
 /// from the most specific stage to the most general (see the crate docs).
 ///
+/// A rule set belongs to one world: its rules are keyed by that world's
+/// handles. With the `serde` feature it is saved and loaded together with
+/// the world's Rapier sets.
+///
 /// ```
 /// use rapier3d::prelude::*;
 /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet};
@@ -166,6 +170,14 @@ impl Changes {
 /// assert_eq!(rules.resolve(&bodies, &colliders, g, w), CollisionRule::NoResponse);
 /// ```
 #[derive(Clone, Debug)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(
+        into = "crate::snapshot::Snapshot",
+        try_from = "crate::snapshot::Snapshot"
+    )
+)]
 pub struct CollisionRuleSet {
     pub(crate) groups: GroupTable,
     pub(crate) default_rule: CollisionRule,
@@ -213,7 +225,13 @@ impl CollisionRuleSet {
     /// rules.remove_group_rule(debris, player);
     /// assert_eq!(rules.group_rule(player, debris), CollisionRule::Defer);
     /// ```
+    ///
+    /// # Panics
+    ///
+    /// If a group was not created by this rule set (nor is built in): a group
+    /// of another rule set means nothing here.
     pub fn set_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup, rule: CollisionRule) {
+        self.check_groups(&[a, b]);
         self.groups.set(a, b, rule);
         self.changes.everything();
     }
@@ -244,12 +262,18 @@ impl CollisionRuleSet {
     /// rules.remove_group_rules_in_set(&team);
     /// assert_eq!(rules.group_rule(team[1], team[1]), Defer);
     /// ```
+    ///
+    /// # Panics
+    ///
+    /// If a group was not created by this rule set (nor is built in): a group
+    /// of another rule set means nothing here.
     pub fn set_group_rules_in_set(
         &mut self,
         set: &[CollisionGroup],
         self_rule: CollisionRule,
         other_rule: CollisionRule,
     ) {
+        self.check_groups(set);
         self.groups.set_in_set(set, self_rule, other_rule);
         self.changes.everything();
     }
@@ -274,12 +298,19 @@ impl CollisionRuleSet {
     /// rules.remove_group_rules_with_set(ghost, &walls[..1]);
     /// assert_eq!(rules.group_rule(walls[0], ghost), Defer);
     /// ```
+    ///
+    /// # Panics
+    ///
+    /// If a group was not created by this rule set (nor is built in): a group
+    /// of another rule set means nothing here.
     pub fn set_group_rules_with_set(
         &mut self,
         group: CollisionGroup,
         set: &[CollisionGroup],
         rule: CollisionRule,
     ) {
+        self.check_groups(&[group]);
+        self.check_groups(set);
         self.groups.set_with_set(group, set, rule);
         self.changes.everything();
     }
@@ -305,12 +336,19 @@ impl CollisionRuleSet {
     /// rules.remove_group_rules_between_sets(&red, &blue);
     /// assert_eq!(rules.group_rule(red[0], blue[0]), Defer);
     /// ```
+    ///
+    /// # Panics
+    ///
+    /// If a group was not created by this rule set (nor is built in): a group
+    /// of another rule set means nothing here.
     pub fn set_group_rules_between_sets(
         &mut self,
         a: &[CollisionGroup],
         b: &[CollisionGroup],
         rule: CollisionRule,
     ) {
+        self.check_groups(a);
+        self.check_groups(b);
         self.groups.set_between_sets(a, b, rule);
         self.changes.everything();
     }
@@ -333,6 +371,19 @@ impl CollisionRuleSet {
     #[must_use]
     pub fn group_count(&self) -> u32 {
         self.groups.group_count()
+    }
+}
+
+impl CollisionRuleSet {
+    /// Refuses groups this rule set did not create: a caller bug.
+    fn check_groups(&self, groups: &[CollisionGroup]) {
+        let count = self.groups.group_count();
+        for g in groups {
+            assert!(
+                g.id() < count,
+                "{g:?} was not created by this rule set ({count} groups exist)"
+            );
+        }
     }
 }
 
@@ -487,7 +538,13 @@ impl CollisionRuleSet {
     /// rules.set_group(body, Some(players));
     /// assert_eq!(rules.group(body), Some(players));
     /// ```
+    ///
+    /// # Panics
+    ///
+    /// If a group was not created by this rule set (nor is built in): a group
+    /// of another rule set means nothing here.
     pub fn set_group(&mut self, node: impl Into<Node>, group: Option<CollisionGroup>) {
+        self.check_groups(group.as_slice());
         let node = node.into();
         if group.is_none() && self.record_id(node).is_none() {
             return;

@@ -65,3 +65,40 @@ fn errors_display_lowercase_and_name_the_handles() {
     let boxed: Box<dyn std::error::Error> = Box::new(error);
     assert!(boxed.source().is_none());
 }
+
+#[test]
+#[should_panic(expected = "was not created by this rule set")]
+fn a_group_of_another_rule_set_is_a_caller_bug() {
+    let mut other = CollisionRuleSet::default();
+    for _ in 0..3 {
+        other.create_group();
+    }
+    let foreign = other.create_group();
+    let (_, b) = bodies(1);
+    let mut rules = CollisionRuleSet::default();
+    rules.set_group(b[0], Some(foreign));
+}
+
+#[test]
+fn a_refused_group_edit_changes_nothing() {
+    let mut other = CollisionRuleSet::default();
+    other.create_group();
+    let foreign = other.create_group();
+    let (_, b) = bodies(1);
+    let mut rules = CollisionRuleSet::default();
+    let before = format!("{rules:?}");
+    let refused = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        rules.set_group_rule(
+            foreign,
+            foreign,
+            rapier_collision_rules::CollisionRule::NoPair,
+        );
+    }));
+    assert!(refused.is_err(), "a foreign group was accepted");
+    assert_eq!(
+        format!("{rules:?}"),
+        before,
+        "the refused edit changed the rule set"
+    );
+    assert_eq!(rules.group(b[0]), None);
+}

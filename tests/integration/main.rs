@@ -7,6 +7,8 @@ mod errors;
 mod live;
 mod properties;
 mod reference;
+#[cfg(feature = "serde")]
+mod saving;
 mod scenes;
 mod soak;
 mod stability;

@@ -341,6 +341,21 @@ impl Run {
                 assert_eq!(why.rule, got, "explain disagrees with resolve: {why:?}");
             }
         }
+        // Saved and loaded, the rule set resolves every pair as before.
+        #[cfg(feature = "serde")]
+        {
+            let text = serde_json::to_string(&self.rules).expect("the rule set saves");
+            let loaded: CollisionRuleSet = serde_json::from_str(&text).expect("the rule set loads");
+            for &a in &self.colliders {
+                for &b in &self.colliders {
+                    let (x, y) = (
+                        loaded.resolve(bodies, colliders, a, b),
+                        self.rules.resolve(bodies, colliders, a, b),
+                    );
+                    assert_eq!(x, y, "resolve({a:?}, {b:?}) after loading");
+                }
+            }
+        }
         // Whatever was edited, forgetting what left the world leaves it clean.
         let mut swept = self.rules.clone();
         swept.remove_missing(bodies, colliders);

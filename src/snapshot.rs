@@ -1,0 +1,101 @@
+//! The saved form of a rule set (feature `serde`): the group table, the
+//! default rule, each record with the nodes that use it, and the parent map.
+//! Handles are saved as Rapier saves them, so a rule set is saved and loaded
+//! together with the Rapier sets it belongs to.
+
+use rapier3d::prelude::RigidBodyHandle;
+use serde::{Deserialize, Serialize};
+
+use crate::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
+
+/// One rule record and the nodes that share it.
+#[derive(Serialize, Deserialize)]
+struct SavedRecord {
+    users: Vec<Node>,
+    personal: CollisionRule,
+    group: Option<CollisionGroup>,
+    specific: Vec<(Node, CollisionRule)>,
+}
+
+#[derive(Serialize, Deserialize)]
+pub(crate) struct Snapshot {
+    default_rule: CollisionRule,
+    group_count: u32,
+    group_rules: Vec<(CollisionGroup, CollisionGroup, CollisionRule)>,
+    records: Vec<SavedRecord>,
+    parents: Vec<(RigidBodyHandle, RigidBodyHandle)>,
+}
+
+impl From<CollisionRuleSet> for Snapshot {
+    fn from(rules: CollisionRuleSet) -> Snapshot {
+        let mut records: Vec<(crate::rule_set::RecordId, SavedRecord)> = Vec::new();
+        for node in rules.nodes() {
+            let id = rules.record_id(node).expect("a listed node has a record");
+            match records.iter_mut().find(|(r, _)| *r == id) {
+                Some((_, saved)) => saved.users.push(node),
+                None => {
+                    let record = rules.records.get(id);
+                    let mut specific: Vec<_> =
+                        record.specific.iter().map(|(&n, &r)| (n, r)).collect();
+                    specific.sort_by_key(|(n, _)| sort_key(*n));
+                    records.push((
+                        id,
+                        SavedRecord {
+                            users: vec![node],
+                            personal: record.personal,
+                            group: record.group,
+                            specific,
+                        },
+                    ));
+                }
+            }
+        }
+        let mut group_rules: Vec<_> = rules.group_rules().collect();
+        group_rules.sort();
+        let mut parents: Vec<_> = rules.parents().collect();
+        parents.sort_by_key(|(c, _)| c.into_raw_parts());
+        Snapshot {
+            default_rule: rules.default_rule(),
+            group_count: rules.group_count(),
+            group_rules,
+            records: records.into_iter().map(|(_, r)| r).collect(),
+            parents,
+        }
+    }
+}
+
+fn sort_key(node: Node) -> (u8, (u32, u32)) {
+    match node {
+        Node::Collider(h) => (0, h.into_raw_parts()),
+        Node::Body(h) => (1, h.into_raw_parts()),
+    }
+}
+
+impl TryFrom<Snapshot> for CollisionRuleSet {
+    type Error = String;
+
+    fn try_from(saved: Snapshot) -> Result<CollisionRuleSet, String> {
+        let mut rules = CollisionRuleSet::default();
+        rules.groups.restore(saved.group_count, saved.group_rules);
+        rules.set_default_rule(saved.default_rule);
+        for record in saved.records {
+            let Some(&first) = record.users.first() else {
+                continue;
+            };
+            rules.set_personal(first, record.personal);
+            rules.set_group(first, record.group);
+            for (other, rule) in record.specific {
+                rules.set_specific(first, other, rule);
+            }
+            for &user in &record.users[1..] {
+                rules.share_rules(first, user);
+            }
+        }
+        for (child, parent) in saved.parents {
+            rules
+                .set_parent(child, parent)
+                .map_err(|e| format!("saved parent map: {e}"))?;
+        }
+        Ok(rules)
+    }
+}

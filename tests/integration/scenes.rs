@@ -142,48 +142,30 @@ fn resting_cube(rule: CollisionRule) -> Outcome {
     }
 }
 
+/// What each rule promises a cube resting on the ground: whether it stays,
+/// has contacts, its Started/Stopped events, and its live pair.
 #[test]
-fn normal_cube_rests_with_contacts_events_and_a_live_pair() {
-    let o = resting_cube(Normal);
-    assert!((o.y - 0.5).abs() < 0.05, "cube did not rest: {o:?}");
-    assert!(
-        o.ever_touching && (o.started, o.stopped) == (1, 0),
-        "no contact or event: {o:?}"
-    );
-    assert_eq!(o.live_rule, Some(Normal), "{o:?}");
-}
-
-#[test]
-fn no_response_cube_falls_through_with_contacts_and_events() {
-    let o = resting_cube(NoResponse);
-    assert!(o.y < -3.0, "cube did not fall: {o:?}");
-    assert!(
-        o.ever_touching && (o.started, o.stopped) == (1, 1),
-        "no contact or event: {o:?}"
-    );
-    assert_eq!(o.live_rule, Some(NoResponse), "{o:?}");
-}
-
-#[test]
-fn no_contacts_cube_falls_with_a_live_pair_and_nothing_else() {
-    let o = resting_cube(NoContacts);
-    assert!(o.y < -3.0, "cube did not fall: {o:?}");
-    assert!(
-        !o.ever_touching && (o.started, o.stopped) == (0, 0),
-        "contacts or events: {o:?}"
-    );
-    assert_eq!(o.live_rule, Some(NoContacts), "{o:?}");
-}
-
-#[test]
-fn no_pair_cube_falls_with_no_live_pair() {
-    let o = resting_cube(NoPair);
-    assert!(o.y < -3.0, "cube did not fall: {o:?}");
-    assert!(
-        !o.ever_touching && (o.started, o.stopped) == (0, 0),
-        "contacts or events: {o:?}"
-    );
-    assert!(!o.ever_live, "a NoPair pair was live: {o:?}");
+fn each_rule_does_to_a_resting_cube_what_it_promises() {
+    // (rule, stays, touches, (started, stopped), live rule)
+    let table = [
+        (Normal, true, true, (1, 0), Some(Normal)),
+        (NoResponse, false, true, (1, 1), Some(NoResponse)),
+        (NoContacts, false, false, (0, 0), Some(NoContacts)),
+        (NoPair, false, false, (0, 0), None),
+    ];
+    for (rule, stays, touches, events, live) in table {
+        let o = resting_cube(rule);
+        let stayed = (o.y - 0.5).abs() < 0.05;
+        assert!(
+            stays == stayed && (stays || o.y < -3.0),
+            "{rule:?}: cube at y = {}: {o:?}",
+            o.y
+        );
+        assert_eq!(o.ever_touching, touches, "{rule:?}: contacts: {o:?}");
+        assert_eq!((o.started, o.stopped), events, "{rule:?}: events: {o:?}");
+        assert_eq!(o.live_rule, live, "{rule:?}: live pair: {o:?}");
+        assert_eq!(o.ever_live, live.is_some(), "{rule:?}: ever live: {o:?}");
+    }
 }
 
 #[test]

@@ -124,11 +124,18 @@ fn soak_a_world_with_rule_churn_and_turnover() {
             let bytes = live_bytes();
             let base = *baseline.get_or_insert(bytes);
             peak_ratio = peak_ratio.max(bytes as f64 / base as f64);
+            // The rule set's share: the bytes a copy of it takes.
+            let before = live_bytes();
+            let copy = hooks.rules().clone();
+            let rule_bytes = live_bytes() - before;
+            drop(copy);
             println!(
-                "step {:>6}: {} live bytes ({:.3}x the first reading), {} records, {tracked} tracked / {rapier} Rapier pairs",
+                "step {:>6}: {} live bytes ({:.3}x the first reading), rule set {} bytes in {} records, \
+                 {tracked} tracked / {rapier} Rapier pairs",
                 step + 1,
                 bytes,
                 bytes as f64 / base as f64,
+                rule_bytes,
                 hooks.rules().record_count()
             );
         }

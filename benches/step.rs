@@ -223,6 +223,10 @@ fn paired() {
     println!("paired ratios (rules / plain, median of 3 runs of 100 step pairs):");
     for n in [1000, 4000] {
         for variant in ["control", "none", "groups", "specific", "hooked"] {
+            // STEP_VARIANTS=none,groups limits the paired runs to those variants.
+            if std::env::var("STEP_VARIANTS").is_ok_and(|v| !v.split(',').any(|x| x == variant)) {
+                continue;
+            }
             let mut twins = Twins::new(variant, n);
             let mut ratios: Vec<f64> = (0..3)
                 .map(|_| {

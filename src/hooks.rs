@@ -128,6 +128,8 @@ pub struct RuleHooks {
     to_wake: Vec<RigidBodyHandle>,
     /// Colliders given the contact-modification flag for `ManifoldUpdate::Never`.
     modifying: HashSet<ColliderHandle>,
+    /// Whether each body of the parent map was dynamic at the last step.
+    linked: HandleMap<RigidBodyHandle, bool>,
     /// Colliders hooked for their pairs' overrides and manifold settings.
     pinned: HashSet<ColliderHandle>,
     /// Colliders to plan again before the next step (a partial plan).
@@ -137,9 +139,6 @@ pub struct RuleHooks {
     plan: Plan,
     /// Something the plan depends on changed: plan again before the next step.
     replan: bool,
-    /// Colliders the last plan hooked that were native before: their pairs
-    /// in Rapier's graph are taken into the table after the step.
-    newly_hooked: Vec<ColliderHandle>,
     /// Rapier's pairs whose colliders are both native, as of the last step:
     /// their rules follow from the colliders' classes.
     native_pairs: Vec<PairKey>,
@@ -185,12 +184,12 @@ impl RuleHooks {
             recalculate_all: false,
             to_wake: Vec::new(),
             modifying: HashSet::new(),
+            linked: HandleMap::default(),
             pinned: HashSet::new(),
             candidates: Vec::new(),
             planner: true,
             plan: Plan::default(),
             replan: true,
-            newly_hooked: Vec::new(),
             native_pairs: Vec::new(),
             regrouped: HashSet::new(),
             native_bits: Vec::new(),
@@ -466,6 +465,7 @@ impl RuleHooks {
     pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
         self.step += 1;
         let mut changed = self.sync_colliders(bodies, colliders);
+        self.sync_linked_bodies(bodies, &mut changed);
         // Objects removed through Rapier (bodies without colliders, slots
         // reused since the last step, edits through dead handles): forgotten
         // by one sweep over the rule set's own nodes, links and entries.
@@ -553,9 +553,9 @@ impl RuleHooks {
     }
 
     /// After a bare `PhysicsPipeline::step`: admits the pairs created during
-    /// the step, takes in the pairs of colliders that just became hooked,
-    /// forgets the pairs Rapier no longer has, and notes the pairs Rapier
-    /// decides natively.
+    /// the step, forgets the pairs Rapier no longer has, notes the pairs
+    /// Rapier decides natively, and gives a rule to hooked pairs Rapier made
+    /// without asking the hook (pairs of resting bodies).
     pub fn after_step(
         &mut self,
         narrow_phase: &NarrowPhase,
@@ -581,27 +581,6 @@ impl RuleHooks {
                 self.pairs.insert(key, state);
             }
         }
-        // A collider that just became hooked may have pairs the hook was not
-        // asked about (sleeping ones): take them in now.
-        for collider in std::mem::take(&mut self.newly_hooked) {
-            let contacts = narrow_phase
-                .contact_pairs_with(collider)
-                .map(|p| (p.collider1, p.collider2));
-            let sensors = narrow_phase
-                .intersection_pairs_with(collider)
-                .map(|(a, b, _)| (a, b));
-            let keys: Vec<PairKey> = contacts
-                .chain(sensors)
-                .map(|(a, b)| PairKey::new(a, b))
-                .collect();
-            for key in keys {
-                if self.pairs.get(key).is_none() {
-                    let (a, b) = key.colliders();
-                    let rule = self.calculate(bodies, colliders, a, b);
-                    self.pairs.insert(key, PairState::new(rule, self.step));
-                }
-            }
-        }
         let mut never_ended = false;
         let regrouped = std::mem::take(&mut self.regrouped);
         self.pairs.retain(|key, state| {
@@ -624,9 +603,43 @@ impl RuleHooks {
             .contact_pairs()
             .map(|p| (p.collider1, p.collider2));
         let sensors = narrow_phase.intersection_pairs().map(|(a, b, _)| (a, b));
+        // A hooked pair the hook was not asked about: Rapier made it but
+        // skipped it (its bodies rest, or a collider just became hooked).
+        // It is live all the same: it gets its rule now, before Rapier
+        // computes any contact for it.
+        let mut unseen = Vec::new();
         for (a, b) in contacts.chain(sensors) {
+            let key = PairKey::new(a, b);
             if native(a) && native(b) {
-                self.native_pairs.push(PairKey::new(a, b));
+                self.native_pairs.push(key);
+            } else if self.pairs.get(key).is_none() {
+                unseen.push(key);
+            }
+        }
+        for key in unseen {
+            let (a, b) = key.colliders();
+            let rule = self.calculate(bodies, colliders, a, b);
+            self.pairs.insert(key, PairState::new(rule, self.step));
+        }
+    }
+
+    /// Notices bodies of the parent map that changed type: a body without
+    /// colliders (a pelvis, a chassis frame) is not seen through colliders,
+    /// yet its default group is part of its descendants' chains.
+    fn sync_linked_bodies(&mut self, bodies: &RigidBodySet, changed: &mut Vec<Node>) {
+        for (child, parent) in self.rules.parents() {
+            for body in [child, parent] {
+                let Some(rigid_body) = bodies.get(body) else {
+                    continue;
+                };
+                let dynamic = rigid_body.is_dynamic();
+                if self
+                    .linked
+                    .insert(body, dynamic)
+                    .is_some_and(|was| was != dynamic)
+                {
+                    changed.push(Node::Body(body));
+                }
             }
         }
     }
@@ -771,9 +784,6 @@ impl RuleHooks {
         entry: ColliderPlan,
     ) {
         let before = self.plan.colliders.get(handle).copied();
-        if before.is_some_and(|b| !b.hooked()) && entry.hooked() {
-            self.newly_hooked.push(handle);
-        }
         if self.policy != RecalculationPolicy::Manual && before.is_some_and(|b| b != entry) {
             self.to_wake
                 .extend(self.known.get(handle).and_then(|k| k.body));

@@ -896,3 +896,45 @@ fn more_groups_than_bits_fall_back_to_the_hook_and_stay_exact() {
         );
     }
 }
+
+#[test]
+fn a_colliderless_parent_changing_type_updates_its_descendants_pairs() -> Result<(), RuleError> {
+    // The cube's parent body has no collider; while it is fixed, the cube's
+    // chain ends in the kinematic group and the pair with a kinematic
+    // platform is NoPair. Made dynamic, the parent puts the chain's root in
+    // the dynamic group: the pair becomes Normal, and the cube lands on it.
+    let mut world = PhysicsWorld::new();
+    let frame =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, 10.0, 0.0)));
+    let platform = world.insert_body(RigidBodyBuilder::kinematic_position_based());
+    let deck = world.insert_collider(ColliderBuilder::cuboid(2.0, 0.1, 2.0), Some(platform));
+    let cube =
+        world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.6, 0.0)));
+    let c = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(cube));
+    let mut rules = CollisionRuleSet::default();
+    rules.set_parent(cube, frame)?;
+    rules.set_default_rule(Defer);
+    let mut hooks = RuleHooks::new(rules);
+    run_world(&mut world, &mut hooks, 1);
+    assert_eq!(hooks.pair_rule(c, deck), None, "a NoPair pair was live");
+    world.bodies[frame].set_body_type(RigidBodyType::Dynamic, true);
+    world.bodies[frame].set_gravity_scale(0.0, true);
+    run_world(&mut world, &mut hooks, 60);
+    let y = world.bodies[cube].translation().y;
+    assert_eq!(
+        hooks.pair_rule(c, deck),
+        Some(Defer),
+        "the pair did not follow the parent's type"
+    );
+    assert!(
+        (y - 0.6).abs() < 0.05,
+        "the cube did not land on the platform: y = {y}"
+    );
+    Ok(())
+}
+
+fn run_world(world: &mut PhysicsWorld, hooks: &mut RuleHooks, steps: usize) {
+    for _ in 0..steps {
+        hooks.step(world);
+    }
+}

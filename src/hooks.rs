@@ -278,13 +278,18 @@ impl RuleHooks {
         calculator: impl Fn(&CalculatorContext<'_>) -> CollisionRule + Send + Sync + 'static,
     ) {
         self.calculator = Some(Box::new(calculator));
-        self.recalculate_all = true;
-        self.replan = true;
+        self.decision_changed();
     }
 
     /// Goes back to the default calculation.
     pub fn remove_calculator(&mut self) {
         self.calculator = None;
+        self.decision_changed();
+    }
+
+    /// Who decides pairs changed: every pair is recalculated, every collider
+    /// planned again (calculators and callbacks need every pair hooked).
+    fn decision_changed(&mut self) {
         self.recalculate_all = true;
         self.replan = true;
     }
@@ -309,15 +314,13 @@ impl RuleHooks {
         callback: impl Fn(&PairCreated<'_>) -> Option<CollisionRule> + Send + Sync + 'static,
     ) {
         self.on_created = Some(Box::new(callback));
-        self.recalculate_all = true;
-        self.replan = true;
+        self.decision_changed();
     }
 
     /// Removes the pair-created callback.
     pub fn remove_pair_created(&mut self) {
         self.on_created = None;
-        self.recalculate_all = true;
-        self.replan = true;
+        self.decision_changed();
     }
 }
 

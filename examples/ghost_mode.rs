@@ -48,7 +48,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("the runner crossed the first wall and stopped at the second: x = {x:.2}");
     if !through_first
         || !(3.5..5.0).contains(&x)
-        || hooks.pair_rule(body, second) != Some(CollisionRule::Normal)
+        || hooks.pair_rule_in(&world, body, second) != Some(CollisionRule::Normal)
     {
         return Err(format!("unexpected end at x = {x}").into());
     }

@@ -2,6 +2,8 @@
 
 use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 
+use hashbrown::HashMap;
+
 use crate::node::HandleMap;
 use crate::{Node, RuleError};
 
@@ -10,6 +12,8 @@ use crate::{Node, RuleError};
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Hierarchy {
     parents: HandleMap<RigidBodyHandle, RigidBodyHandle>,
+    /// How many children each parent has.
+    children: HashMap<RigidBodyHandle, u32>,
 }
 
 impl Hierarchy {
@@ -34,19 +38,40 @@ impl Hierarchy {
         if self.is_ancestor_or_self(child, parent) {
             return Err(RuleError::Cycle { child, parent });
         }
-        self.parents.insert(child, parent);
+        if let Some(former) = self.parents.insert(child, parent) {
+            self.unlink(former);
+        }
+        *self.children.entry(parent).or_default() += 1;
         Ok(())
     }
 
     pub(crate) fn remove_parent(&mut self, child: RigidBodyHandle) -> Option<RigidBodyHandle> {
-        self.parents.remove(child)
+        let parent = self.parents.remove(child)?;
+        self.unlink(parent);
+        Some(parent)
+    }
+
+    fn unlink(&mut self, parent: RigidBodyHandle) {
+        if let Some(count) = self.children.get_mut(&parent) {
+            *count -= 1;
+            if *count == 0 {
+                self.children.remove(&parent);
+            }
+        }
+    }
+
+    /// Whether `body` is the parent of some body.
+    pub(crate) fn is_parent(&self, body: RigidBodyHandle) -> bool {
+        self.children.contains_key(&body)
     }
 
     /// Removes every link that names `body`: its own, and its children's
     /// (they become roots).
     pub(crate) fn forget(&mut self, body: RigidBodyHandle) {
-        self.parents.remove(body);
-        self.parents.retain(|_, parent| *parent != body);
+        self.remove_parent(body);
+        if self.children.remove(&body).is_some() {
+            self.parents.retain(|_, parent| *parent != body);
+        }
     }
 
     /// Whether `ancestor` is `body` or lies above it.

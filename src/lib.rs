@@ -14,10 +14,11 @@ mod rule;
 mod rule_set;
 #[cfg(feature = "serde")]
 mod snapshot;
+mod stats;
 
 pub use error::RuleError;
 pub use group::CollisionGroup;
-pub use hooks::{CalculatorContext, PairCreated, RecalculationPolicy, RuleHooks};
+pub use hooks::{CalculatorContext, PairCreated, RecalculationPolicy, RuleHooks, WorldRef};
 pub use integrity::Problem;
 pub use node::Node;
 pub use pairs::ManifoldUpdate;
@@ -25,3 +26,4 @@ pub use rapier3d;
 pub use resolve::{Explanation, Stage};
 pub use rule::CollisionRule;
 pub use rule_set::CollisionRuleSet;
+pub use stats::{FullPass, StepStats};

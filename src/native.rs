@@ -2,30 +2,53 @@
 //! cheapest mechanism that decides all of its pairs exactly: collision
 //! groups for group-level `NoPair`, solver groups for group-level
 //! `NoResponse`, active collision types for pairs of non-dynamic bodies, and
-//! the hook flag only where a pair needs a decision per pair.
+//! the hook flag only where a pair needs a decision per pair
+//! (`docs/architecture.md`, "The planner").
 //!
 //! A collider is *native* when its pairs with every other native collider
 //! are a function of two small facts about each side: its effective group
 //! and whether its body is dynamic. That holds when no node of its chain
-//! carries a personal rule or specific entries, no specific entry names a
-//! node of its chain, and every node of its chain has the same effective
-//! group: then the specific and personal stages defer, every step of the
-//! group stage compares the same two groups, and the rule is
-//! `table[g1, g2]`, else the default, then the special case of section 5.
-//! A pair with a hooked collider is decided by the hook, so hooked colliders
-//! carry permissive groups and pass every native test.
+//! carries a personal rule, every node of its chain has the same effective
+//! group, and every specific entry that could reach its pairs is carried by
+//! a hooked collider on the other side: then the specific and personal
+//! stages defer, every step of the group stage compares the same two groups,
+//! and the rule is `table[g1, g2]`, else the default, then the special case
+//! of `docs/semantics.md`. A pair with a hooked collider is decided by the
+//! hook, so hooked colliders carry permissive groups and pass every native
+//! test.
+//!
+//! Only the colliders the rules reach are planned. Every other collider is
+//! in a default group (`DEFAULT_DYNAMIC` or `DEFAULT_KINEMATIC`) and keeps
+//! Rapier's own settings, which already say `Normal`, and no pair between two
+//! non-dynamic bodies (the built-in table entry): as long as the default
+//! groups' plans are Rapier's defaults, the planner needs nothing of them.
+//! When a rule reaches the default groups, every collider is planned (a
+//! [`FullPass`]).
 
 use hashbrown::{HashMap, HashSet};
 use rapier3d::prelude::*;
 
 use crate::node::HandleMap;
-use crate::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
+use crate::pairs::PairKey;
+use crate::{CollisionGroup, CollisionRule, CollisionRuleSet, FullPass, Node};
 
 /// The facts that decide a native collider's pairs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(crate) struct Class {
     pub(crate) group: CollisionGroup,
     pub(crate) dynamic: bool,
+}
+
+impl Class {
+    /// The class of a collider no rule reaches.
+    pub(crate) fn unreached(dynamic: bool) -> Class {
+        let group = if dynamic {
+            CollisionGroup::DEFAULT_DYNAMIC
+        } else {
+            CollisionGroup::DEFAULT_KINEMATIC
+        };
+        Class { group, dynamic }
+    }
 }
 
 /// The Rapier settings the planner gives one collider.
@@ -43,9 +66,28 @@ impl ColliderPlan {
         self.class.is_none()
     }
 
+    /// Whether the plan leaves the collider with Rapier's own settings.
+    pub(crate) fn is_rapier_default(&self) -> bool {
+        !self.hooked()
+            && self.collision == InteractionGroups::all()
+            && self.solver == InteractionGroups::all()
+            && self.types == ActiveCollisionTypes::default()
+    }
+
+    /// The plan of a collider no rule reaches: Rapier's defaults.
+    pub(crate) fn unreached(dynamic: bool) -> ColliderPlan {
+        ColliderPlan {
+            class: Some(Class::unreached(dynamic)),
+            collision: InteractionGroups::all(),
+            solver: InteractionGroups::all(),
+            types: ActiveCollisionTypes::default(),
+        }
+    }
+
     /// A hooked collider keeps a collider's default groups (every bit), which
-    /// pass every native test, so the hook decides; a non-dynamic one takes every collision type so that
-    /// the hook also sees its pairs with other non-dynamic colliders.
+    /// pass every native test, so the hook decides; a non-dynamic one takes
+    /// every collision type so that the hook also sees its pairs with other
+    /// non-dynamic colliders.
     fn hooked_plan(dynamic: bool) -> ColliderPlan {
         ColliderPlan {
             class: None,
@@ -72,195 +114,259 @@ pub(crate) fn class_rule(rules: &CollisionRuleSet, a: Class, b: Class) -> Collis
     rule
 }
 
-/// The plan of every collider.
+/// The plan of the colliders the rules reach (or of every collider, in a
+/// full pass). A collider without an entry keeps Rapier's defaults.
 #[derive(Debug, Default)]
 pub(crate) struct Plan {
     pub(crate) colliders: HandleMap<ColliderHandle, ColliderPlan>,
     /// The settings of each class that has native members: an edit that
     /// moves a collider into one of these classes plans that collider alone.
     classes: HashMap<Class, ColliderPlan>,
+    /// Why every collider was planned; `None` when only the reached ones were.
+    pub(crate) full: Option<FullPass>,
+    /// The colliders hooked to carry the specific entries and pinned pairs
+    /// of their other side (see [`plan`]).
+    pub(crate) carriers: HashSet<ColliderHandle>,
 }
 
-/// Plans every collider of `colliders`. `pinned` colliders are hooked
-/// whatever their rules (pairs with an override or a manifold setting);
-/// with `all_hooked`, every collider is.
-pub(crate) fn plan(
-    rules: &CollisionRuleSet,
-    bodies: &RigidBodySet,
-    colliders: &ColliderSet,
-    pinned: &HashSet<ColliderHandle>,
-    all_hooked: bool,
-) -> Plan {
-    let dynamic_of = |collider: &Collider| {
-        collider
-            .parent()
-            .and_then(|b| bodies.get(b))
-            .is_some_and(|b| b.is_dynamic())
-    };
+impl Plan {
+    /// The plan entry of `collider`, or the defaults of an unreached one.
+    pub(crate) fn entry(&self, collider: ColliderHandle, dynamic: bool) -> ColliderPlan {
+        self.colliders
+            .get(collider)
+            .copied()
+            .unwrap_or_else(|| ColliderPlan::unreached(dynamic))
+    }
+}
+
+/// What the planner is asked to plan.
+pub(crate) struct Request<'a> {
+    pub(crate) rules: &'a CollisionRuleSet,
+    pub(crate) bodies: &'a RigidBodySet,
+    pub(crate) colliders: &'a ColliderSet,
+    /// The colliders the rules reach (ignored in a full pass, which plans all).
+    pub(crate) reached: &'a [ColliderHandle],
+    /// The nodes whose records may hold specific entries.
+    pub(crate) ruled: &'a [Node],
+    /// Pairs with an override or a manifold setting: one side is hooked.
+    pub(crate) pinned: &'a [PairKey],
+    /// Set when every collider must pass the hook (a calculator, a callback,
+    /// the `Manual` policy, the planner turned off).
+    pub(crate) all_hooked: Option<FullPass>,
+}
+
+fn is_dynamic(bodies: &RigidBodySet, collider: &Collider) -> bool {
+    collider
+        .parent()
+        .and_then(|b| bodies.get(b))
+        .is_some_and(|b| b.is_dynamic())
+}
+
+/// Plans the colliders of `request`.
+pub(crate) fn plan(request: &Request<'_>) -> Plan {
+    let Request {
+        rules,
+        bodies,
+        colliders,
+        ..
+    } = *request;
     let mut plan = Plan::default();
-    if all_hooked {
+    if let Some(reason) = request.all_hooked {
+        plan.full = Some(reason);
         for (handle, collider) in colliders.iter() {
-            plan.colliders
-                .insert(handle, ColliderPlan::hooked_plan(dynamic_of(collider)));
+            let entry = ColliderPlan::hooked_plan(is_dynamic(bodies, collider));
+            plan.colliders.insert(handle, entry);
         }
         return plan;
     }
 
-    // Each collider's class, or None where its chain needs the hook.
-    let mut classes: Vec<(ColliderHandle, Option<Class>, bool)> =
-        Vec::with_capacity(colliders.len());
-    for (handle, collider) in colliders.iter() {
-        let dynamic = dynamic_of(collider);
-        let class = (!pinned.contains(&handle))
-            .then(|| native_class(rules, bodies, colliders, handle, dynamic))
-            .flatten();
-        classes.push((handle, class, dynamic));
+    // Each reached collider's class, or None where its chain needs the hook.
+    let class_of = |handle: ColliderHandle| {
+        let collider = colliders.get(handle)?;
+        let dynamic = is_dynamic(bodies, collider);
+        Some((
+            handle,
+            native_class(rules, bodies, colliders, handle, dynamic),
+            dynamic,
+        ))
+    };
+    let mut classes: Vec<(ColliderHandle, Option<Class>, bool)> = request
+        .reached
+        .iter()
+        .filter_map(|&h| class_of(h))
+        .collect();
+    let settings = GroupSettings::new(rules, classes.iter().filter_map(|c| c.1));
+    plan.full = settings
+        .reaches_defaults()
+        .then_some(FullPass::DefaultGroups);
+    if plan.full.is_some() {
+        classes = colliders.iter().filter_map(|(h, _)| class_of(h)).collect();
     }
 
-    // The groups native colliders use, whether each has dynamic and
-    // non-dynamic members, and the rules between them.
-    let mut members: HashMap<CollisionGroup, (bool, bool)> = HashMap::new();
-    for class in classes.iter().filter_map(|(_, class, _)| *class) {
-        let entry = members.entry(class.group).or_default();
-        if class.dynamic {
-            entry.0 = true;
-        } else {
-            entry.1 = true;
-        }
-    }
-    let mut used: Vec<CollisionGroup> = members.keys().copied().collect();
-    used.sort_unstable();
-    let group_rule = |a: CollisionGroup, b: CollisionGroup| {
-        let rule = rules.group_rule(a, b);
-        if rule.is_decided() {
-            rule
-        } else {
-            rules.default_rule()
-        }
-    };
-    let relations = || {
-        used.iter()
-            .flat_map(|&a| used.iter().map(move |&b| (a, b, group_rule(a, b))))
-    };
-    // A group with a NoContacts relation needs the hook: the pair must exist
-    // without contacts, which no group test can say.
-    let needs_hook: HashSet<CollisionGroup> = relations()
-        .filter(|&(_, _, rule)| rule == CollisionRule::NoContacts)
-        .flat_map(|(a, b, _)| [a, b])
-        .collect();
-    let has_dynamic = |g: CollisionGroup| members[&g].0;
-    let has_static = |g: CollisionGroup| members[&g].1;
-    // Non-dynamic members take every collision type only where they may pair
-    // with other non-dynamic colliders; elsewhere Rapier's default types
-    // already keep them apart, as NoPair would.
-    let static_types: HashSet<CollisionGroup> = relations()
-        .filter(|&(a, b, rule)| rule != CollisionRule::NoPair && has_static(a) && has_static(b))
-        .flat_map(|(a, b, _)| [a, b])
-        .collect();
-    let filtered_by_types = |g: CollisionGroup| !has_dynamic(g) && !static_types.contains(&g);
-    let needs_bits = |(a, b, rule): (CollisionGroup, CollisionGroup, CollisionRule)| match rule {
-        CollisionRule::NoPair => !(filtered_by_types(a) && filtered_by_types(b)),
-        // Only a dynamic body responds: other pairs need no solver test.
-        CollisionRule::NoResponse => has_dynamic(a) || has_dynamic(b),
-        _ => false,
-    };
-    let mut involved: Vec<CollisionGroup> = relations()
-        .filter(|&(a, b, _)| !needs_hook.contains(&a) && !needs_hook.contains(&b))
-        .filter(|&relation| needs_bits(relation))
-        .flat_map(|(a, b, _)| [a, b])
-        .collect::<HashSet<_>>()
-        .into_iter()
-        .collect();
-    involved.sort_unstable();
-    // One bit per involved group while they fit; the rest fall back to
-    // hooks. A group with no relation to test keeps every bit as its
-    // membership (a collider's default), which no filter leaves out.
-    let bits: HashMap<CollisionGroup, u32> = involved
+    // Hooked by their own chains or groups.
+    let mut hooked: HashSet<ColliderHandle> = classes
         .iter()
-        .take(32)
-        .enumerate()
-        .map(|(i, &g)| (g, i as u32))
+        .filter(|(_, class, _)| class.is_none_or(|c| settings.entry(c).is_none()))
+        .map(|&(h, _, _)| h)
         .collect();
-    let native_group = |g: CollisionGroup| {
-        !needs_hook.contains(&g) && (bits.contains_key(&g) || !involved.contains(&g))
-    };
-    let bit_of = |g: CollisionGroup| {
-        bits.get(&g)
-            .map_or(Group::ALL, |&bit| Group::from_bits_retain(1 << bit))
-    };
-    let filter_of = |g: CollisionGroup, excluded: CollisionRule| {
-        let mut filter = Group::ALL;
-        for (&h, &bit) in &bits {
-            if group_rule(g, h) == excluded && needs_bits((g, h, excluded)) {
-                filter.remove(Group::from_bits_retain(1 << bit));
-            }
-        }
-        filter
-    };
-    let mut filters: HashMap<CollisionGroup, (Group, Group)> = HashMap::new();
+    plan.carriers = carriers(request, &mut hooked);
+    // A carrier the rules did not otherwise reach (a named node's collider,
+    // one side of a pinned pair) is planned too.
+    let known: HashSet<ColliderHandle> = classes.iter().map(|c| c.0).collect();
+    let mut extra: Vec<ColliderHandle> = plan
+        .carriers
+        .iter()
+        .copied()
+        .filter(|c| !known.contains(c))
+        .collect();
+    extra.sort_unstable_by_key(|c| c.into_raw_parts());
+    classes.extend(extra.into_iter().filter_map(class_of));
 
     for (handle, class, dynamic) in classes {
-        let entry = match class.filter(|c| native_group(c.group)) {
+        let entry = match class.filter(|_| !hooked.contains(&handle)) {
             None => ColliderPlan::hooked_plan(dynamic),
-            Some(class) => {
-                let g = class.group;
-                let (collision, solver) = *filters.entry(g).or_insert_with(|| {
-                    (
-                        filter_of(g, CollisionRule::NoPair),
-                        filter_of(g, CollisionRule::NoResponse),
-                    )
-                });
-                let types = if dynamic || !static_types.contains(&g) {
-                    ActiveCollisionTypes::default()
-                } else {
-                    ActiveCollisionTypes::all()
-                };
-                ColliderPlan {
-                    class: Some(class),
-                    collision: InteractionGroups::new(
-                        bit_of(g),
-                        collision,
-                        InteractionTestMode::And,
-                    ),
-                    solver: InteractionGroups::new(bit_of(g), solver, InteractionTestMode::And),
-                    types,
+            Some(class) => match settings.entry(class) {
+                Some(entry) => {
+                    plan.classes.insert(class, entry);
+                    entry
                 }
-            }
+                None => ColliderPlan::hooked_plan(dynamic),
+            },
         };
-        if let Some(class) = entry.class {
-            plan.classes.insert(class, entry);
-        }
         plan.colliders.insert(handle, entry);
     }
     plan
 }
 
+/// Chooses, for every specific entry and every pinned pair, the side that
+/// carries the hook flag, adds its colliders to `hooked` and returns those
+/// it added. A specific entry `x -> y` reaches only pairs whose chains hold
+/// `x` on one side and `y` on the other, so hooking every collider under
+/// either node decides all of them; the cheaper side is taken (colliders
+/// already hooked cost nothing, dynamic ones little, a fixed or kinematic
+/// hub much), the entry's owner on a tie.
+fn carriers(
+    request: &Request<'_>,
+    hooked: &mut HashSet<ColliderHandle>,
+) -> HashSet<ColliderHandle> {
+    let Request {
+        rules,
+        bodies,
+        colliders,
+        ..
+    } = *request;
+    let under = |node: Node| -> Vec<ColliderHandle> {
+        let mut below: Vec<ColliderHandle> = rules
+            .descendants(node, bodies, colliders)
+            .into_iter()
+            .filter_map(|n| match n {
+                Node::Collider(c) => Some(c),
+                Node::Body(_) => None,
+            })
+            .collect();
+        if let Node::Collider(c) = node {
+            if colliders.contains(c) {
+                below.push(c);
+            }
+        }
+        below
+    };
+    let mut sides: Vec<(Vec<ColliderHandle>, Vec<ColliderHandle>)> = Vec::new();
+    for &node in request.ruled {
+        let Some(record) = rules.record(node) else {
+            continue;
+        };
+        // Sorted, so that the choice is the same in every run.
+        let mut subjects: Vec<Node> = record.specific.keys().copied().collect();
+        subjects.sort_unstable_by_key(|n| node_order(*n));
+        for subject in subjects {
+            sides.push((under(node), under(subject)));
+        }
+    }
+    for key in request.pinned {
+        let (a, b) = key.colliders();
+        sides.push((vec![a], vec![b]));
+    }
+
+    let mut added = HashSet::new();
+    for (owner, other) in sides {
+        let cost = |side: &[ColliderHandle], hooked: &HashSet<ColliderHandle>| -> u64 {
+            side.iter()
+                .filter(|c| !hooked.contains(*c))
+                .map(|&c| match colliders.get(c) {
+                    Some(collider) if is_dynamic(bodies, collider) => 1,
+                    Some(_) => 1_000,
+                    None => 0,
+                })
+                .sum()
+        };
+        let side = if cost(&other, hooked) < cost(&owner, hooked) {
+            other
+        } else {
+            owner
+        };
+        for c in side {
+            if hooked.insert(c) {
+                added.insert(c);
+            }
+        }
+    }
+    added
+}
+
+/// A total order on nodes, for deterministic iteration.
+pub(crate) fn node_order(node: Node) -> (u8, (u32, u32)) {
+    match node {
+        Node::Collider(h) => (0, h.into_raw_parts()),
+        Node::Body(h) => (1, h.into_raw_parts()),
+    }
+}
+
 /// Plans `handles` alone, against the rest of `plan`: possible when each of
-/// them ends up hooked or in a class the plan already has (the bits and
-/// filters of every group then stay as they are). `None`: plan everything.
+/// them ends up hooked by its own chain, or in a class the plan already has,
+/// and no specific entry or pinned pair could make it a carrier (the bits
+/// and filters of every group then stay as they are). `None`: plan again.
 pub(crate) fn replan_some(
     plan: &Plan,
-    rules: &CollisionRuleSet,
-    bodies: &RigidBodySet,
-    colliders: &ColliderSet,
+    request: &Request<'_>,
     handles: &[ColliderHandle],
-    pinned: &HashSet<ColliderHandle>,
-    all_hooked: bool,
 ) -> Option<Vec<(ColliderHandle, ColliderPlan)>> {
+    let Request {
+        rules,
+        bodies,
+        colliders,
+        ..
+    } = *request;
+    if request.all_hooked.is_some() || plan.full.is_some() {
+        return None;
+    }
+    let pinned: HashSet<ColliderHandle> = request
+        .pinned
+        .iter()
+        .flat_map(|k| {
+            let (a, b) = k.colliders();
+            [a, b]
+        })
+        .collect();
     let mut planned = Vec::with_capacity(handles.len());
     for &handle in handles {
         let Some(collider) = colliders.get(handle) else {
             continue;
         };
-        let dynamic = collider
-            .parent()
-            .and_then(|b| bodies.get(b))
-            .is_some_and(|b| b.is_dynamic());
-        let class = (!all_hooked && !pinned.contains(&handle))
-            .then(|| native_class(rules, bodies, colliders, handle, dynamic))
-            .flatten();
-        let entry = match class {
+        if pinned.contains(&handle) || touches_entries(rules, bodies, colliders, handle) {
+            return None;
+        }
+        let dynamic = is_dynamic(bodies, collider);
+        let entry = match native_class(rules, bodies, colliders, handle, dynamic) {
             None => ColliderPlan::hooked_plan(dynamic),
+            Some(class) if class == Class::unreached(dynamic) => {
+                match plan.classes.get(&class) {
+                    Some(entry) => *entry,
+                    // Checked when the plan was made: a default class is planned
+                    // as Rapier's defaults unless the plan is a full pass.
+                    None => ColliderPlan::unreached(dynamic),
+                }
+            }
             Some(class) => *plan.classes.get(&class)?,
         };
         planned.push((handle, entry));
@@ -268,8 +374,30 @@ pub(crate) fn replan_some(
     Some(planned)
 }
 
-/// The class of collider `leaf`, or `None` if its chain carries per-pair
-/// rules or mixes effective groups.
+/// Whether a node of the chain of `leaf` carries specific entries or is
+/// named by one: the side that carries them is chosen by a whole plan.
+fn touches_entries(
+    rules: &CollisionRuleSet,
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    leaf: ColliderHandle,
+) -> bool {
+    let mut node = Some(Node::Collider(leaf));
+    while let Some(current) = node {
+        if rules.is_named(current)
+            || rules
+                .record(current)
+                .is_some_and(|r| !r.specific.is_empty())
+        {
+            return true;
+        }
+        node = rules.hierarchy.next(bodies, colliders, current);
+    }
+    false
+}
+
+/// The class of collider `leaf`, or `None` if its chain carries a personal
+/// rule or mixes effective groups.
 fn native_class(
     rules: &CollisionRuleSet,
     bodies: &RigidBodySet,
@@ -280,13 +408,11 @@ fn native_class(
     let mut group = None;
     let mut node = Some(Node::Collider(leaf));
     while let Some(current) = node {
-        if rules.is_named(current) {
+        if rules
+            .record(current)
+            .is_some_and(|r| r.personal.is_decided())
+        {
             return None;
-        }
-        if let Some(record) = rules.record(current) {
-            if record.personal.is_decided() || !record.specific.is_empty() {
-                return None;
-            }
         }
         let effective = rules.effective_group(bodies, colliders, current);
         if group.is_some_and(|g| g != effective) {
@@ -296,4 +422,166 @@ fn native_class(
         node = rules.hierarchy.next(bodies, colliders, current);
     }
     group.map(|group| Class { group, dynamic })
+}
+
+/// The group-level half of a plan: which groups get a bit, the filters of
+/// each, which take every collision type, and which need the hook.
+struct GroupSettings {
+    /// Whether each group used has dynamic and non-dynamic members.
+    members: HashMap<CollisionGroup, (bool, bool)>,
+    bits: HashMap<CollisionGroup, u32>,
+    involved: HashSet<CollisionGroup>,
+    needs_hook: HashSet<CollisionGroup>,
+    static_types: HashSet<CollisionGroup>,
+    filters: HashMap<CollisionGroup, (Group, Group)>,
+}
+
+impl GroupSettings {
+    /// The settings of the groups of `classes`, with the two default
+    /// classes always counted as used: every collider no rule reaches is in
+    /// one of them.
+    fn new(rules: &CollisionRuleSet, classes: impl Iterator<Item = Class>) -> GroupSettings {
+        let mut members: HashMap<CollisionGroup, (bool, bool)> = HashMap::new();
+        let defaults = [Class::unreached(true), Class::unreached(false)];
+        for class in classes.chain(defaults) {
+            let entry = members.entry(class.group).or_default();
+            if class.dynamic {
+                entry.0 = true;
+            } else {
+                entry.1 = true;
+            }
+        }
+        let mut used: Vec<CollisionGroup> = members.keys().copied().collect();
+        used.sort_unstable();
+        let group_rule = |a: CollisionGroup, b: CollisionGroup| {
+            let rule = rules.group_rule(a, b);
+            if rule.is_decided() {
+                rule
+            } else {
+                rules.default_rule()
+            }
+        };
+        let relations: Vec<(CollisionGroup, CollisionGroup, CollisionRule)> = used
+            .iter()
+            .flat_map(|&a| used.iter().map(move |&b| (a, b)))
+            .map(|(a, b)| (a, b, group_rule(a, b)))
+            .collect();
+        // A group with a NoContacts relation needs the hook: the pair must
+        // exist without contacts, which no group test can say.
+        let needs_hook: HashSet<CollisionGroup> = relations
+            .iter()
+            .filter(|&&(_, _, rule)| rule == CollisionRule::NoContacts)
+            .flat_map(|&(a, b, _)| [a, b])
+            .collect();
+        let has_dynamic = |g: CollisionGroup| members[&g].0;
+        let has_static = |g: CollisionGroup| members[&g].1;
+        // Rapier pairs two non-dynamic colliders when either side's collision
+        // types allow it. Where two groups' non-dynamic members may pair
+        // (their rule is not NoPair), one side takes every type: the side
+        // that is not a default group, so that colliders no rule reaches
+        // keep Rapier's defaults; both sides between two created groups.
+        let default_group = |g: CollisionGroup| {
+            g == CollisionGroup::DEFAULT_DYNAMIC || g == CollisionGroup::DEFAULT_KINEMATIC
+        };
+        let mut static_types = HashSet::new();
+        for &(a, b, rule) in &relations {
+            if rule == CollisionRule::NoPair || !has_static(a) || !has_static(b) {
+                continue;
+            }
+            match (default_group(a), default_group(b)) {
+                (false, true) => static_types.insert(a),
+                (true, false) => static_types.insert(b),
+                _ => {
+                    static_types.insert(a);
+                    static_types.insert(b)
+                }
+            };
+        }
+        let filtered_by_types = |g: CollisionGroup| !has_dynamic(g) && !static_types.contains(&g);
+        let needs_bits = |a: CollisionGroup, b: CollisionGroup, rule: CollisionRule| match rule {
+            CollisionRule::NoPair => !(filtered_by_types(a) && filtered_by_types(b)),
+            // Only a dynamic body responds: other pairs need no solver test.
+            CollisionRule::NoResponse => has_dynamic(a) || has_dynamic(b),
+            _ => false,
+        };
+        let mut involved: Vec<CollisionGroup> = relations
+            .iter()
+            .filter(|&&(a, b, _)| !needs_hook.contains(&a) && !needs_hook.contains(&b))
+            .filter(|&&(a, b, rule)| needs_bits(a, b, rule))
+            .flat_map(|&(a, b, _)| [a, b])
+            .collect::<HashSet<_>>()
+            .into_iter()
+            .collect();
+        involved.sort_unstable();
+        // One bit per involved group while they fit; the rest fall back to
+        // hooks. A group with no relation to test keeps every bit as its
+        // membership (a collider's default), which no filter leaves out.
+        let bits: HashMap<CollisionGroup, u32> = involved
+            .iter()
+            .take(32)
+            .enumerate()
+            .map(|(i, &g)| (g, i as u32))
+            .collect();
+        let filter_of = |g: CollisionGroup, excluded: CollisionRule| {
+            let mut filter = Group::ALL;
+            for (&h, &bit) in &bits {
+                if group_rule(g, h) == excluded && needs_bits(g, h, excluded) {
+                    filter.remove(Group::from_bits_retain(1 << bit));
+                }
+            }
+            filter
+        };
+        let filters = used
+            .iter()
+            .map(|&g| {
+                let filters = (
+                    filter_of(g, CollisionRule::NoPair),
+                    filter_of(g, CollisionRule::NoResponse),
+                );
+                (g, filters)
+            })
+            .collect();
+        GroupSettings {
+            members,
+            bits,
+            involved: involved.into_iter().collect(),
+            needs_hook,
+            static_types,
+            filters,
+        }
+    }
+
+    /// The plan of a native collider of `class`; `None` if its group needs
+    /// the hook (a `NoContacts` relation, or past the 32 bits).
+    fn entry(&self, class: Class) -> Option<ColliderPlan> {
+        let g = class.group;
+        let fits = self.bits.contains_key(&g) || !self.involved.contains(&g);
+        if self.needs_hook.contains(&g) || !fits || !self.members.contains_key(&g) {
+            return None;
+        }
+        let membership = self
+            .bits
+            .get(&g)
+            .map_or(Group::ALL, |&bit| Group::from_bits_retain(1 << bit));
+        let (collision, solver) = self.filters[&g];
+        let types = if class.dynamic || !self.static_types.contains(&g) {
+            ActiveCollisionTypes::default()
+        } else {
+            ActiveCollisionTypes::all()
+        };
+        Some(ColliderPlan {
+            class: Some(class),
+            collision: InteractionGroups::new(membership, collision, InteractionTestMode::And),
+            solver: InteractionGroups::new(membership, solver, InteractionTestMode::And),
+            types,
+        })
+    }
+
+    /// Whether a rule reaches the default groups: their plan is not
+    /// Rapier's defaults, so every collider must be planned.
+    fn reaches_defaults(&self) -> bool {
+        [Class::unreached(true), Class::unreached(false)]
+            .into_iter()
+            .any(|class| !self.entry(class).is_some_and(|e| e.is_rapier_default()))
+    }
 }

@@ -78,6 +78,9 @@ pub(crate) struct PairState {
     /// were frozen in; `None` until the first contact update after the
     /// setting took effect.
     pub(crate) frozen: Mutex<Option<(u64, Vec<FrozenManifold>)>>,
+    /// Rapier dropped the pair when its collider was regrouped, and may find
+    /// it again: the state is kept for one step, but the pair is not live.
+    pub(crate) absent: bool,
 }
 
 impl PairState {
@@ -88,6 +91,7 @@ impl PairState {
             manifold: ManifoldUpdate::ByRule,
             last_answer: AtomicU64::new(step),
             frozen: Mutex::new(None),
+            absent: false,
         }
     }
 
@@ -95,6 +99,11 @@ impl PairState {
     #[inline]
     pub(crate) fn rule(&self) -> CollisionRule {
         self.overridden.unwrap_or(self.computed)
+    }
+
+    /// Whether the hook answered for this pair in `step`.
+    pub(crate) fn answered_in(&self, step: u64) -> bool {
+        self.last_answer.load(Ordering::Relaxed) == step
     }
 
     /// Records an answer in `step`; `true` if the hook already answered for
@@ -128,6 +137,10 @@ impl PairTable {
 
     pub(crate) fn retain(&mut self, mut keep: impl FnMut(PairKey, &mut PairState) -> bool) {
         self.pairs.retain(|key, state| keep(*key, state));
+    }
+
+    pub(crate) fn len(&self) -> usize {
+        self.pairs.len()
     }
 
     pub(crate) fn iter(&self) -> impl Iterator<Item = (PairKey, &PairState)> + '_ {

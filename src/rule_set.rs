@@ -814,10 +814,11 @@ impl CollisionRuleSet {
     pub fn remove_node(&mut self, node: impl Into<Node>) {
         let node = node.into();
         self.detach(node);
-        for record in self.records.live_mut() {
-            record.specific.remove(&node);
+        if self.named.remove(&node).is_some() {
+            for record in self.records.live_mut() {
+                record.specific.remove(&node);
+            }
         }
-        self.named.remove(&node);
         if let Node::Body(body) = node {
             for (child, parent) in self.hierarchy.links() {
                 if parent == body {
@@ -870,13 +871,38 @@ impl CollisionRuleSet {
             return None;
         }
         let mut nodes = changes.nodes.clone();
-        if !changes.records.is_empty() {
+        // A record with one user is only that user's, which the log holds:
+        // only a shared record sends us looking for its other users.
+        let shared = changes.records.iter().any(|&id| {
+            self.records
+                .slots
+                .get(id.0 as usize)
+                .is_some_and(|r| r.as_ref().is_some_and(|r| r.users > 1))
+        });
+        if shared {
             nodes.extend(self.nodes().filter(|&node| {
                 self.record_id(node)
                     .is_some_and(|id| changes.records.contains(&id))
             }));
         }
         Some(nodes)
+    }
+
+    /// Every node the rules name: nodes with a record, subjects of specific
+    /// entries, and bodies of the parent map; in a fixed order.
+    pub(crate) fn ruled_nodes(&self) -> Vec<Node> {
+        let mut nodes: Vec<Node> = self.nodes().chain(self.named.keys().copied()).collect();
+        for (child, parent) in self.hierarchy.links() {
+            nodes.extend([Node::Body(child), Node::Body(parent)]);
+        }
+        nodes.sort_unstable_by_key(|&n| crate::native::node_order(n));
+        nodes.dedup();
+        nodes
+    }
+
+    /// Whether `body` is a child or a parent in the parent map.
+    pub(crate) fn in_hierarchy(&self, body: RigidBodyHandle) -> bool {
+        self.hierarchy.parent(body).is_some() || self.hierarchy.is_parent(body)
     }
 
     /// Every node that has a rule record, in no particular order.

@@ -441,8 +441,11 @@ fn pair_overrides_last_until_forced() {
     let (other, _) = scene.cube(3.0, 0.5);
     let mut hooks = RuleHooks::default();
     run(&mut scene, &mut hooks, 5);
+    // No rule reaches the cube or the floor: the world-less form knows
+    // nothing of their pair, the on-demand form asks Rapier.
+    assert!(!hooks.set_pair_rule(scene.floor, cube, NoResponse));
     assert!(
-        hooks.set_pair_rule(scene.floor, cube, NoResponse),
+        hooks.set_pair_rule_in(&scene.world, scene.floor, cube, NoResponse),
         "the pair was not live"
     );
     assert_eq!(hooks.pair_rule(cube, scene.floor), Some(NoResponse));
@@ -453,7 +456,7 @@ fn pair_overrides_last_until_forced() {
     hooks.force_recalculation(body);
     run(&mut scene, &mut hooks, 1);
     assert_eq!(
-        hooks.pair_rule(cube, scene.floor),
+        hooks.pair_rule_in(&scene.world, cube, scene.floor),
         Some(Normal),
         "force_recalculation kept the override"
     );
@@ -466,7 +469,7 @@ fn a_pair_override_to_no_response_lets_the_cube_fall() {
     let (body, cube) = scene.cube(0.0, 0.5);
     let mut hooks = RuleHooks::default();
     run(&mut scene, &mut hooks, 5);
-    hooks.set_pair_rule(cube, scene.floor, NoResponse);
+    assert!(hooks.set_pair_rule_in(&scene.world, cube, scene.floor, NoResponse));
     run(&mut scene, &mut hooks, 60);
     assert!(scene.y(body) < -3.0, "y = {}", scene.y(body));
 }
@@ -559,8 +562,16 @@ fn never_keeps_the_contacts_of_the_moment_it_was_set() {
     let mut frozen_apart = false;
     for _ in 0..30 {
         hooks.step(&mut scene.world);
-        if hooks.pair_rule(cube, scene.floor).is_some() && !scene.touching(cube, scene.floor) {
-            frozen_apart = hooks.set_manifold_update(cube, scene.floor, ManifoldUpdate::Never);
+        let live = hooks
+            .pair_rule_in(&scene.world, cube, scene.floor)
+            .is_some();
+        if live && !scene.touching(cube, scene.floor) {
+            frozen_apart = hooks.set_manifold_update_in(
+                &scene.world,
+                cube,
+                scene.floor,
+                ManifoldUpdate::Never,
+            );
             break;
         }
     }
@@ -581,7 +592,7 @@ fn never_keeps_the_contacts_of_the_moment_it_was_set() {
     let (body, cube) = scene.cube(0.0, 0.5);
     let mut hooks = RuleHooks::default();
     run(&mut scene, &mut hooks, 20);
-    assert!(hooks.set_manifold_update(cube, scene.floor, ManifoldUpdate::Never));
+    assert!(hooks.set_manifold_update_in(&scene.world, cube, scene.floor, ManifoldUpdate::Never));
     run(&mut scene, &mut hooks, 60);
     assert!(
         (scene.y(body) - 0.5).abs() < 0.05,
@@ -624,7 +635,11 @@ fn removal_through_rapier_is_noticed_and_reused_handles_start_clean() {
         "Rapier did not reuse the slot"
     );
     run(&mut scene, &mut hooks, 30);
-    assert_eq!(hooks.pair_rule(new_cube, scene.floor), Some(Normal));
+    assert_eq!(
+        hooks.pair_rule_in(&scene.world, new_cube, scene.floor),
+        Some(Normal)
+    );
+
     assert!(
         (scene.y(new_body) - 0.5).abs() < 0.05,
         "y = {}",

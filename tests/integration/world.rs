@@ -170,7 +170,7 @@ impl Run {
     pub fn live(&self) -> Vec<(Raw, Raw, CollisionRule)> {
         let mut live: Vec<_> = self
             .hooks
-            .pairs()
+            .pairs_in(&self.world)
             .map(|(a, b, rule)| {
                 let (a, b) = (a.into_raw_parts(), b.into_raw_parts());
                 (a.min(b), a.max(b), rule)
@@ -211,14 +211,34 @@ impl Run {
             assert_eq!(rule, fresh, "live pair ({a:?}, {b:?}) is stale");
             assert_ne!(rule, CollisionRule::NoPair);
         }
-        for pair in self.world.narrow_phase.contact_pairs() {
-            let (a, b) = (pair.collider1, pair.collider2);
+        let narrow_phase = &self.world.narrow_phase;
+        let sensors = narrow_phase.intersection_pairs().map(|(a, b, _)| (a, b));
+        let rapier: Vec<_> = narrow_phase
+            .contact_pairs()
+            .map(|p| (p.collider1, p.collider2))
+            .chain(sensors)
+            .collect();
+        for &(a, b) in &rapier {
             let expected = Some(rules.resolve(bodies, colliders, a, b))
                 .filter(|&r| r != CollisionRule::NoPair);
             assert_eq!(
-                self.hooks.pair_rule(a, b),
+                self.hooks.pair_rule_in(&self.world, a, b),
                 expected,
                 "Rapier's pair ({a:?}, {b:?})"
+            );
+            // Without the world, the hooks answer the pairs they know, exactly.
+            let known = self.hooks.pair_rule(a, b);
+            assert!(
+                known.is_none() || known == expected,
+                "Rapier's pair ({a:?}, {b:?}): the hooks know {known:?}, resolve says {expected:?}"
+            );
+        }
+        for (a, b, _) in self.hooks.pairs() {
+            assert!(
+                rapier
+                    .iter()
+                    .any(|&(x, y)| (x, y) == (a, b) || (y, x) == (a, b)),
+                "live pair ({a:?}, {b:?}) is not in Rapier's graph"
             );
         }
         assert_eq!(

@@ -1,0 +1,331 @@
+//! `RuleHooks`: the rules inside Rapier's step. This file builds the hooks
+//! and holds their settings; the flow of a step is in the other files:
+//! `upkeep.rs` (what runs before and after Rapier's step, and its cost),
+//! `answer.rs` (the `PhysicsHooks` answers during the step), `live.rs` (the
+//! live-pair API) and `roster.rs` (what the hooks watch).
+
+mod answer;
+mod live;
+mod roster;
+mod upkeep;
+
+use std::sync::Mutex;
+
+use hashbrown::{HashMap, HashSet};
+use rapier3d::prelude::*;
+
+use crate::native::Plan;
+use crate::node::HandleMap;
+use crate::pairs::{PairKey, PairState, PairTable};
+use crate::{CollisionRule, CollisionRuleSet, Node, StepStats};
+
+pub use live::WorldRef;
+use roster::Roster;
+
+/// When live pairs are recalculated after the rules change.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum RecalculationPolicy {
+    /// The design document's behaviour: edits reach existing pairs only
+    /// through [`RuleHooks::force_recalculation`]; new pairs use the current
+    /// rules.
+    Manual,
+    /// Every edit recalculates the live pairs it can affect before the next
+    /// step, as if `force_recalculation` had been called on the edited nodes,
+    /// and wakes their bodies so that the edit takes effect.
+    #[default]
+    OnChange,
+    /// Every live pair is recalculated before every step (for calculators
+    /// that read state the crate cannot see).
+    EveryStep,
+}
+
+/// What a custom calculator is given: the pair, the Rapier sets, and the
+/// rules. Colliders come in no particular order.
+pub struct CalculatorContext<'a> {
+    /// One collider of the pair.
+    pub collider1: ColliderHandle,
+    /// The other collider of the pair.
+    pub collider2: ColliderHandle,
+    /// The world's rigid bodies.
+    pub bodies: &'a RigidBodySet,
+    /// The world's colliders.
+    pub colliders: &'a ColliderSet,
+    /// The rule set.
+    pub rules: &'a CollisionRuleSet,
+}
+
+impl CalculatorContext<'_> {
+    /// The default calculation for the pair: [`CollisionRuleSet::resolve`].
+    #[must_use]
+    pub fn default_rule(&self) -> CollisionRule {
+        self.rules
+            .resolve(self.bodies, self.colliders, self.collider1, self.collider2)
+    }
+}
+
+/// What the pair-created callback is given. Colliders come in no particular order.
+pub struct PairCreated<'a> {
+    /// One collider of the pair.
+    pub collider1: ColliderHandle,
+    /// The other collider of the pair.
+    pub collider2: ColliderHandle,
+    /// The rule the calculation gave the pair.
+    pub rule: CollisionRule,
+    /// The world's rigid bodies.
+    pub bodies: &'a RigidBodySet,
+    /// The world's colliders.
+    pub colliders: &'a ColliderSet,
+}
+
+type Calculator = Box<dyn Fn(&CalculatorContext<'_>) -> CollisionRule + Send + Sync>;
+type CreatedCallback = Box<dyn Fn(&PairCreated<'_>) -> Option<CollisionRule> + Send + Sync>;
+
+/// The collision rules inside Rapier's step: a [`PhysicsHooks`]
+/// implementation that answers every pair from its rule, keeps the table of
+/// live pairs, and configures the colliders' flags itself.
+///
+/// ```
+/// use rapier3d::prelude::*;
+/// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
+///
+/// let mut world = PhysicsWorld::new();
+/// let ground = world.insert_body(RigidBodyBuilder::fixed());
+/// let floor = world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+/// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.5, 0.0)));
+/// let g = world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
+///
+/// let mut rules = CollisionRuleSet::default();
+/// rules.set_personal(ghost, CollisionRule::NoResponse);
+/// let mut hooks = RuleHooks::new(rules);
+/// let mut paired = false;
+/// for _ in 0..60 {
+///     hooks.step(&mut world);
+///     paired |= hooks.pair_rule(g, floor) == Some(CollisionRule::NoResponse);
+/// }
+/// let y = world.bodies[ghost].translation().y;
+/// assert!(y < -1.0, "the ghost fell through the floor: y = {y}");
+/// assert!(paired, "the ghost and the floor formed a live NoResponse pair");
+/// ```
+pub struct RuleHooks {
+    rules: CollisionRuleSet,
+    policy: RecalculationPolicy,
+    /// The hooked pairs: every pair with a hooked collider that Rapier holds.
+    pairs: PairTable,
+    /// Pairs first seen during the current step, admitted after it.
+    pending: Mutex<HashMap<PairKey, PairState>>,
+    calculator: Option<Calculator>,
+    on_created: Option<CreatedCallback>,
+    /// Counts steps; the hook compares it to tell the CCD's second answer.
+    step: u64,
+    forced: Vec<Node>,
+    /// A calculator or callback changed: every pair is to be recalculated.
+    recalculate_all: bool,
+    to_wake: Vec<RigidBodyHandle>,
+    /// Colliders whose bodies are to be woken before the next step.
+    wake_colliders: Vec<ColliderHandle>,
+    /// Colliders given the contact-modification flag for `ManifoldUpdate::Never`.
+    modifying: HashSet<ColliderHandle>,
+    /// Colliders to plan again before the next step (a partial plan).
+    candidates: Vec<ColliderHandle>,
+    /// Whether the planner may leave colliders unhooked (see `native.rs`).
+    planner: bool,
+    plan: Plan,
+    /// Something the plan depends on changed: plan again before the next step.
+    replan: bool,
+    /// Colliders whose groups the last plan changed. Rapier drops and finds
+    /// their pairs again, so their table entries outlive one absence.
+    regrouped: HashSet<ColliderHandle>,
+    /// Colliders configured or changed before this step: after it, their
+    /// pairs are looked up in Rapier's graph (a pair Rapier made without
+    /// asking the hook gets its rule; one it dropped is forgotten).
+    touched: Vec<ColliderHandle>,
+    /// The colliders and bodies the hooks watch.
+    roster: Roster,
+    /// The pairs of each native collider the plan configures, as of its last
+    /// look (see `live.rs`).
+    partners: HandleMap<ColliderHandle, live::Partners>,
+    stats: StepStats,
+    /// How many colliders the last plan hooked.
+    hooked: usize,
+}
+
+impl std::fmt::Debug for RuleHooks {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RuleHooks")
+            .field("policy", &self.policy)
+            .field("live_pairs", &self.pairs().count())
+            .field("calculator", &self.calculator.is_some())
+            .field("on_created", &self.on_created.is_some())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Default for RuleHooks {
+    fn default() -> Self {
+        RuleHooks::new(CollisionRuleSet::default())
+    }
+}
+
+/// Building, and the rules.
+impl RuleHooks {
+    /// Hooks that apply `rules` to every collider of the worlds they step.
+    pub fn new(rules: CollisionRuleSet) -> RuleHooks {
+        RuleHooks {
+            rules,
+            policy: RecalculationPolicy::default(),
+            pairs: PairTable::default(),
+            pending: Mutex::new(HashMap::new()),
+            calculator: None,
+            on_created: None,
+            step: 0,
+            forced: Vec::new(),
+            recalculate_all: false,
+            to_wake: Vec::new(),
+            wake_colliders: Vec::new(),
+            modifying: HashSet::new(),
+            candidates: Vec::new(),
+            planner: true,
+            plan: Plan::default(),
+            replan: true,
+            regrouped: HashSet::new(),
+            touched: Vec::new(),
+            roster: Roster::default(),
+            partners: HandleMap::default(),
+            stats: StepStats::default(),
+            hooked: 0,
+        }
+    }
+
+    /// The rules.
+    #[must_use]
+    pub fn rules(&self) -> &CollisionRuleSet {
+        &self.rules
+    }
+
+    /// The rules, to edit. Under [`RecalculationPolicy::OnChange`] the live
+    /// pairs an edit can affect are recalculated before the next step.
+    pub fn rules_mut(&mut self) -> &mut CollisionRuleSet {
+        &mut self.rules
+    }
+
+    /// Chooses when live pairs follow rule edits (default `OnChange`).
+    pub fn set_policy(&mut self, policy: RecalculationPolicy) {
+        self.policy = policy;
+        self.replan = true;
+    }
+
+    /// Turns the planner on (the default) or off. On, colliders whose pairs
+    /// Rapier can decide itself get collision and solver groups instead of
+    /// the hook flag, which keeps Rapier's contact recycling; off, every
+    /// collider is hooked (for comparison and debugging). The planner also
+    /// stands aside while a calculator or a pair-created callback is
+    /// registered or the policy is `Manual`: those need every pair to pass
+    /// the hook.
+    ///
+    /// The crate owns the collision groups, solver groups, active hooks and
+    /// active collision types of the colliders the rules reach (all of
+    /// them during a [`FullPass`](crate::FullPass)); the others keep Rapier's settings.
+    pub fn set_planner(&mut self, enabled: bool) {
+        self.planner = enabled;
+        self.replan = true;
+    }
+
+    /// Whether the planner is on (see [`set_planner`](Self::set_planner)).
+    #[must_use]
+    pub fn planner(&self) -> bool {
+        self.planner
+    }
+
+    /// How many pairs the hooks keep state for (hooked live pairs, `NoPair`
+    /// pairs the hook refuses, overrides): a diagnostic, bounded by the
+    /// number of pairs in Rapier's narrow phase that have a hooked collider.
+    #[must_use]
+    pub fn tracked_pairs(&self) -> usize {
+        self.pairs.len()
+    }
+
+    /// How many colliders carry the hook flag as of the last plan.
+    #[must_use]
+    pub fn hooked_count(&self) -> usize {
+        self.hooked
+    }
+
+    /// What the last step did and cost: hooked and watched colliders, hook
+    /// answers, recalculated pairs, whether every collider was looked at and
+    /// why. A world that steps slower with the rules than without: start
+    /// here (`docs/performance.md`, "Why is my world slow").
+    #[must_use]
+    pub fn stats(&self) -> StepStats {
+        self.stats
+    }
+
+    /// The current recalculation policy.
+    #[must_use]
+    pub fn policy(&self) -> RecalculationPolicy {
+        self.policy
+    }
+
+    /// Replaces the default calculation (specific, personal, group,
+    /// default) for every pair (seed 3.D). The calculator can run the
+    /// default calculation itself with [`CalculatorContext::default_rule`].
+    /// The special case of two non-dynamic bodies still applies to its
+    /// answer. Live pairs are recalculated with it before the next step
+    /// (except under `Manual`).
+    ///
+    /// ```
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut hooks = RuleHooks::default();
+    /// // Sensors aside, nothing responds to anything: a world of ghosts.
+    /// hooks.set_calculator(|ctx| ctx.default_rule().most_restrictive(CollisionRule::NoResponse));
+    /// ```
+    pub fn set_calculator(
+        &mut self,
+        calculator: impl Fn(&CalculatorContext<'_>) -> CollisionRule + Send + Sync + 'static,
+    ) {
+        self.calculator = Some(Box::new(calculator));
+        self.decision_changed();
+    }
+
+    /// Goes back to the default calculation.
+    pub fn remove_calculator(&mut self) {
+        self.calculator = None;
+        self.decision_changed();
+    }
+
+    /// Who decides pairs changed: every pair is recalculated, every collider
+    /// planned again (calculators and callbacks need every pair hooked).
+    fn decision_changed(&mut self) {
+        self.recalculate_all = true;
+        self.replan = true;
+    }
+
+    /// Registers the pair-created callback (seed's immediate events): it
+    /// runs when a pair is created, before its first contact computation,
+    /// and again whenever the pair's rule is recalculated, and may replace
+    /// the pair's rule by returning `Some`. Rapier may call it from several
+    /// threads at once.
+    ///
+    /// ```
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.on_pair_created(|pair| {
+    ///     // Nothing may push anything in this world; contacts still report.
+    ///     (pair.rule == CollisionRule::Normal).then_some(CollisionRule::NoResponse)
+    /// });
+    /// ```
+    pub fn on_pair_created(
+        &mut self,
+        callback: impl Fn(&PairCreated<'_>) -> Option<CollisionRule> + Send + Sync + 'static,
+    ) {
+        self.on_created = Some(Box::new(callback));
+        self.decision_changed();
+    }
+
+    /// Removes the pair-created callback.
+    pub fn remove_pair_created(&mut self) {
+        self.on_created = None;
+        self.decision_changed();
+    }
+}

@@ -1,0 +1,192 @@
+//! What the hooks watch between steps: the colliders and bodies the rules
+//! reach (every collider during a full pass). Rapier tells nobody what
+//! changed, so the hooks look, before each step, at what they watch and
+//! nothing else: objects removed, colliders moved to another body, bodies
+//! that changed type, colliders added to a watched body. The cost of a
+//! step's look is proportional to what is watched, not to the world
+//! (`docs/architecture.md`, "Cost per step").
+
+use rapier3d::prelude::*;
+
+use crate::Node;
+use crate::node::HandleMap;
+
+/// What the hooks remember of a watched collider.
+#[derive(Clone, Copy, Debug)]
+struct Known {
+    body: Option<RigidBodyHandle>,
+    dynamic: bool,
+}
+
+/// The watched colliders and bodies, each in a dense slot-indexed table and
+/// a compact list (so that a look walks only them).
+#[derive(Debug, Default)]
+pub(crate) struct Roster {
+    colliders: HandleMap<ColliderHandle, Known>,
+    collider_list: Vec<ColliderHandle>,
+    /// Whether each watched body was dynamic at the last look.
+    bodies: HandleMap<RigidBodyHandle, bool>,
+    body_list: Vec<RigidBodyHandle>,
+}
+
+/// What one look found.
+#[derive(Debug, Default)]
+pub(crate) struct Look {
+    /// Removed colliders, with the body each was on.
+    pub(crate) removed_colliders: Vec<(ColliderHandle, Option<RigidBodyHandle>)>,
+    pub(crate) removed_bodies: Vec<RigidBodyHandle>,
+    /// Nodes whose chains changed: a collider moved to another body, a body
+    /// whose type changed (its colliders' default group changed).
+    pub(crate) changed: Vec<Node>,
+    /// Colliders seen for the first time.
+    pub(crate) added: Vec<ColliderHandle>,
+    /// Colliders no longer watched: the rules no longer reach them.
+    pub(crate) released: Vec<ColliderHandle>,
+}
+
+fn dynamic(bodies: &RigidBodySet, body: Option<RigidBodyHandle>) -> bool {
+    body.and_then(|b| bodies.get(b))
+        .is_some_and(|b| b.is_dynamic())
+}
+
+impl Roster {
+    pub(crate) fn collider_count(&self) -> usize {
+        self.collider_list.len()
+    }
+
+    pub(crate) fn body_count(&self) -> usize {
+        self.body_list.len()
+    }
+
+    pub(crate) fn colliders(&self) -> &[ColliderHandle] {
+        &self.collider_list
+    }
+
+    /// Starts watching `collider` (as it is now); `true` if it was not watched.
+    pub(crate) fn watch_collider(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        collider: ColliderHandle,
+    ) -> bool {
+        if self.colliders.get(collider).is_some() {
+            return false;
+        }
+        if self.colliders.is_superseded(collider) {
+            // A dead handle (its slot holds a newer collider): listed alone,
+            // so that the next look reports it removed.
+            self.collider_list.push(collider);
+            return false;
+        }
+        let body = colliders.get(collider).and_then(|c| c.parent());
+        let known = Known {
+            body,
+            dynamic: dynamic(bodies, body),
+        };
+        // A watched collider in a reused slot stays in the list: the next
+        // look finds it removed.
+        self.colliders.insert_evicting(collider, known);
+        self.collider_list.push(collider);
+        true
+    }
+
+    /// Starts watching `body`; `true` if it was not watched.
+    pub(crate) fn watch_body(&mut self, bodies: &RigidBodySet, body: RigidBodyHandle) -> bool {
+        if self.bodies.get(body).is_some() {
+            return false;
+        }
+        if self.bodies.is_superseded(body) {
+            self.body_list.push(body);
+            return false;
+        }
+        self.bodies
+            .insert_evicting(body, dynamic(bodies, Some(body)));
+        self.body_list.push(body);
+        true
+    }
+
+    /// Looks at every watched object. With `all`, also walks Rapier's whole
+    /// collider set for colliders not yet watched (a full pass). Objects
+    /// that `keep` no longer wants are let go (they are then unreached).
+    pub(crate) fn look(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        all: bool,
+        keep: impl Fn(Node) -> bool,
+    ) -> Look {
+        let mut look = Look::default();
+        if all {
+            for (handle, _) in colliders.iter() {
+                if self.watch_collider(bodies, colliders, handle) {
+                    look.added.push(handle);
+                }
+            }
+        }
+        let mut list = std::mem::take(&mut self.body_list);
+        list.retain(|&handle| {
+            let Some(body) = bodies.get(handle) else {
+                self.bodies.remove(handle);
+                look.removed_bodies.push(handle);
+                return false;
+            };
+            let Some(was) = self.bodies.get_mut(handle) else {
+                // An older generation evicted by a newer one: removed.
+                look.removed_bodies.push(handle);
+                return false;
+            };
+            if *was != body.is_dynamic() {
+                *was = body.is_dynamic();
+                look.changed.push(Node::Body(handle));
+            }
+            for &collider in body.colliders() {
+                if self.colliders.get(collider).is_none() {
+                    look.added.push(collider);
+                }
+            }
+            if keep(Node::Body(handle)) {
+                true
+            } else {
+                self.bodies.remove(handle);
+                false
+            }
+        });
+        self.body_list = list;
+        for i in 0..look.added.len() {
+            let collider = look.added[i];
+            self.watch_collider(bodies, colliders, collider);
+        }
+
+        let mut list = std::mem::take(&mut self.collider_list);
+        list.retain(|&handle| {
+            let Some(collider) = colliders.get(handle) else {
+                let known = self.colliders.remove(handle);
+                look.removed_colliders
+                    .push((handle, known.and_then(|k| k.body)));
+                return false;
+            };
+            let Some(known) = self.colliders.get_mut(handle) else {
+                look.removed_colliders.push((handle, None));
+                return false;
+            };
+            let body = collider.parent();
+            let is_dynamic = dynamic(bodies, body);
+            if known.body != body {
+                look.changed.push(Node::Collider(handle));
+            } else if known.dynamic != is_dynamic {
+                look.changed.extend(body.map(Node::Body));
+            }
+            known.body = body;
+            known.dynamic = is_dynamic;
+            if all || keep(Node::Collider(handle)) {
+                true
+            } else {
+                self.colliders.remove(handle);
+                look.released.push(handle);
+                false
+            }
+        });
+        self.collider_list = list;
+        look
+    }
+}

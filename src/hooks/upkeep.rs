@@ -1,0 +1,652 @@
+//! What runs around Rapier's step: before it, noticing what changed (edits,
+//! objects removed or changed through Rapier), planning the colliders'
+//! settings and recalculating live pairs; after it, admitting new pairs and
+//! forgetting ended ones. Everything here costs in proportion to what the
+//! rules reach, the edits since the last step, and the hooked pairs: a
+//! world the rules do not reach costs nothing per step
+//! (`docs/architecture.md`, "Cost per step").
+
+use std::sync::PoisonError;
+use std::time::Instant;
+
+use hashbrown::HashSet;
+use rapier3d::prelude::*;
+
+use super::{RecalculationPolicy, RuleHooks};
+use crate::native::{self, ColliderPlan, Request};
+use crate::pairs::{ManifoldUpdate, PairKey, PairState};
+use crate::{FullPass, Node, StepStats};
+
+/// The hook flags every hooked collider carries.
+const HOOKS: ActiveHooks =
+    ActiveHooks::FILTER_CONTACT_PAIRS.union(ActiveHooks::FILTER_INTERSECTION_PAIR);
+
+/// Whether Rapier holds a pair of `a` and `b` (a contact or a sensor pair).
+pub(super) fn pair_exists(
+    narrow_phase: &NarrowPhase,
+    a: ColliderHandle,
+    b: ColliderHandle,
+) -> bool {
+    narrow_phase.contact_pair(a, b).is_some() || narrow_phase.intersection_pair(a, b).is_some()
+}
+
+/// Every collider Rapier pairs with `collider`.
+pub(super) fn partners_of(
+    narrow_phase: &NarrowPhase,
+    collider: ColliderHandle,
+) -> impl Iterator<Item = ColliderHandle> + '_ {
+    let other = move |a: ColliderHandle, b: ColliderHandle| if a == collider { b } else { a };
+    narrow_phase
+        .contact_pairs_with(collider)
+        .map(move |p| other(p.collider1, p.collider2))
+        .chain(
+            narrow_phase
+                .intersection_pairs_with(collider)
+                .map(move |(a, b, _)| other(a, b)),
+        )
+}
+
+/// Whether the body of `collider` may move during a step.
+fn awake(bodies: &RigidBodySet, colliders: &ColliderSet, collider: ColliderHandle) -> bool {
+    colliders
+        .get(collider)
+        .and_then(|c| c.parent())
+        .and_then(|b| bodies.get(b))
+        .is_some_and(|b| !b.is_fixed() && !b.is_sleeping())
+}
+
+/// Stepping.
+impl RuleHooks {
+    /// Steps `world` with the rules: [`prepare`](Self::prepare), waking what
+    /// the edits need awake, Rapier's step, and [`after_step`](Self::after_step).
+    pub fn step(&mut self, world: &mut PhysicsWorld) {
+        self.step_with_events(world, &());
+    }
+
+    /// [`step`](Self::step), with Rapier's events sent to `events`.
+    pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
+        self.prepare(&world.bodies, &mut world.colliders);
+        self.freeze_manifolds(&world.narrow_phase);
+        self.wake_edited(&mut world.islands, &mut world.bodies);
+        world.step_with_events(&*self, events);
+        self.after_step(&world.narrow_phase, &world.bodies, &world.colliders);
+    }
+
+    /// Before a bare `PhysicsPipeline::step`: notices what the edits touched
+    /// and what changed through Rapier among the objects the rules reach
+    /// (removed, moved to another body, changed type, new colliders on a
+    /// watched body), plans those colliders' flags and groups (every
+    /// reached collider if anything they all depend on changed), and
+    /// recalculates live pairs as the policy says. Call
+    /// [`wake_edited`](Self::wake_edited) next, then step with these hooks,
+    /// then [`after_step`](Self::after_step).
+    pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+        let start = Instant::now();
+        self.step += 1;
+        self.stats = StepStats::default();
+        let full = self.full_pass();
+        if full != self.plan.full && (full.is_some() || self.plan.full.is_some()) {
+            self.replan = true;
+        }
+
+        // 1. What the edits touched starts being watched.
+        let changes = self.rules.take_changes();
+        let mut changed = match self.rules.touched_nodes(&changes) {
+            Some(nodes) => nodes,
+            None => {
+                self.replan = true;
+                self.rules.ruled_nodes()
+            }
+        };
+        for &node in &changed {
+            self.watch(bodies, colliders, node);
+        }
+
+        // 2. Look at what is watched: removals, changes, additions.
+        let everything = self.plan.full.is_some() || full.is_some();
+        let look = {
+            let (rules, plan) = (&self.rules, &self.plan);
+            self.roster.look(bodies, colliders, everything, |node| {
+                reached(rules, plan, bodies, colliders, node)
+            })
+        };
+        self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
+        for &c in &look.released {
+            self.plan.colliders.remove(c);
+            self.partners.remove(c);
+        }
+        changed.extend(look.changed);
+        // Forgetting a removed parent changes its children's chains.
+        let removal_changes = self.rules.take_changes();
+        if let Some(more) = self.rules.touched_nodes(&removal_changes) {
+            changed.extend(more);
+        }
+        self.candidates.extend(look.added);
+
+        // 3. Plan the colliders under every changed node.
+        let mut under = HashSet::new();
+        for &node in &changed {
+            under.extend(self.colliders_under(node, bodies, colliders));
+        }
+        if self.replan {
+            self.apply_plan(bodies, colliders);
+        } else {
+            self.candidates.extend(under.iter().copied());
+            if !self.candidates.is_empty() {
+                self.apply_partial_plan(bodies, colliders);
+            }
+        }
+
+        // 4. Recalculate live pairs as the policy says.
+        let mut drop_overrides = HashSet::new();
+        for node in std::mem::take(&mut self.forced) {
+            drop_overrides.extend(self.colliders_under(node, bodies, colliders));
+        }
+        let everything = self.policy == RecalculationPolicy::EveryStep
+            || (self.policy == RecalculationPolicy::OnChange
+                && (changes.everything || std::mem::take(&mut self.recalculate_all)));
+        let mut affected = HashSet::new();
+        if self.policy == RecalculationPolicy::OnChange && !everything {
+            affected = under;
+        }
+        if self.policy == RecalculationPolicy::Manual {
+            self.recalculate_all = false;
+        }
+        if everything || !affected.is_empty() || !drop_overrides.is_empty() {
+            let refresh =
+                self.recalculate(bodies, colliders, everything, &affected, &drop_overrides);
+            for handle in refresh {
+                if let Some(collider) = colliders.get_mut(handle) {
+                    let groups = collider.collision_groups();
+                    collider.set_collision_groups(InteractionGroups::none());
+                    collider.set_collision_groups(groups);
+                    self.regrouped.insert(handle);
+                }
+            }
+        }
+        for c in std::mem::take(&mut self.wake_colliders) {
+            self.to_wake
+                .extend(colliders.get(c).and_then(|c| c.parent()));
+        }
+        self.stats.hooked_colliders = self.hooked;
+        self.stats.full_pass = self.plan.full;
+        self.stats.watched_colliders = self.roster.collider_count();
+        self.stats.watched_bodies = self.roster.body_count();
+        self.stats.upkeep = start.elapsed();
+    }
+
+    /// Settles `ManifoldUpdate::Never` settings made since the last step
+    /// for pairs that have no contacts now: they are frozen empty. (Pairs
+    /// with contacts are frozen in their next contact update, in each body's
+    /// frame.) Part of [`step`](Self::step); call it after
+    /// [`prepare`](Self::prepare) when stepping a bare pipeline.
+    pub fn freeze_manifolds(&mut self, narrow_phase: &NarrowPhase) {
+        for (key, state) in self.pairs.iter() {
+            if state.manifold != ManifoldUpdate::Never {
+                continue;
+            }
+            let mut frozen = state.frozen.lock().unwrap_or_else(PoisonError::into_inner);
+            if frozen.is_some() {
+                continue;
+            }
+            let (a, b) = key.colliders();
+            let touching = narrow_phase
+                .contact_pair(a, b)
+                .is_some_and(|pair| pair.has_any_active_contact());
+            if !touching {
+                // Step 0 never comes again: no manifold is frozen later.
+                *frozen = Some((0, Vec::new()));
+            }
+        }
+    }
+
+    /// Wakes the bodies of pairs whose rule an edit changed, so that the
+    /// change takes effect on sleeping bodies too. Part of
+    /// [`step`](Self::step); call it after [`prepare`](Self::prepare) when
+    /// stepping a bare pipeline.
+    pub fn wake_edited(&mut self, islands: &mut IslandManager, bodies: &mut RigidBodySet) {
+        for body in self.to_wake.drain(..) {
+            if bodies.contains(body) {
+                islands.wake_up(bodies, body, true);
+            }
+        }
+    }
+
+    /// After a bare `PhysicsPipeline::step`: admits the pairs the hook met
+    /// during the step, forgets hooked pairs Rapier no longer has, gives a
+    /// rule to pairs of newly hooked colliders that Rapier made without
+    /// asking the hook (pairs of resting bodies), and notes the pairs of the
+    /// native colliders the plan configures.
+    pub fn after_step(
+        &mut self,
+        narrow_phase: &NarrowPhase,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) {
+        let start = Instant::now();
+        // Rapier finds a pair by slot: a handle whose slot was reused must
+        // not find the new collider's pair.
+        let exists = |key: PairKey| {
+            let (a, b) = key.colliders();
+            colliders.contains(a) && colliders.contains(b) && pair_exists(narrow_phase, a, b)
+        };
+        let pending = std::mem::take(
+            self.pending
+                .get_mut()
+                .unwrap_or_else(PoisonError::into_inner),
+        );
+        for (key, state) in pending {
+            if exists(key) {
+                self.stats.pairs_created += 1;
+                self.pairs.insert(key, state);
+            }
+        }
+
+        // The pairs of colliders configured or changed before the step:
+        // Rapier may have made some without asking the hook (the bodies
+        // rest), and those of a hooked collider are live all the same.
+        let touched = std::mem::take(&mut self.touched);
+        let hooked = |plan: &native::Plan, c: ColliderHandle| {
+            plan.colliders.get(c).is_some_and(|p| p.hooked())
+        };
+        let mut unseen = Vec::new();
+        for &c in &touched {
+            if !hooked(&self.plan, c) {
+                continue;
+            }
+            for other in partners_of(narrow_phase, c) {
+                let key = PairKey::new(c, other);
+                if self.pairs.get(key).is_none() {
+                    unseen.push(key);
+                }
+            }
+        }
+        for key in unseen {
+            let (a, b) = key.colliders();
+            let rule = self.calculate(bodies, colliders, a, b);
+            self.pairs.insert(key, PairState::new(rule, self.step));
+        }
+
+        // Forget the hooked pairs Rapier no longer has. A pair whose bodies
+        // rest (asleep or fixed, and not changed before the step) cannot have
+        // ended: Rapier skips it. Any other is looked up in Rapier's graph,
+        // where the broad phase may have dropped it during the step.
+        let step = self.step;
+        let touched: HashSet<ColliderHandle> = touched.into_iter().collect();
+        let regrouped = std::mem::take(&mut self.regrouped);
+        let (mut answered, mut never_ended) = (0, false);
+        let plan = &self.plan;
+        self.pairs.retain(|key, state| {
+            let (a, b) = key.colliders();
+            state.absent = false;
+            let keep = if !hooked(plan, a) && !hooked(plan, b) {
+                // Both sides native now: Rapier decides the pair itself.
+                false
+            } else if !colliders.contains(a) || !colliders.contains(b) {
+                false
+            } else if regrouped.contains(&a) || regrouped.contains(&b) {
+                state.absent = !pair_exists(narrow_phase, a, b);
+                true
+            } else if state.answered_in(step)
+                || awake(bodies, colliders, a)
+                || awake(bodies, colliders, b)
+                || touched.contains(&a)
+                || touched.contains(&b)
+            {
+                answered += usize::from(state.answered_in(step));
+                // From the hooked side, whose pairs are few (Rapier walks
+                // the first collider's pairs).
+                if hooked(plan, a) {
+                    pair_exists(narrow_phase, a, b)
+                } else {
+                    pair_exists(narrow_phase, b, a)
+                }
+            } else {
+                true
+            };
+            never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
+            keep
+        });
+        self.replan |= never_ended;
+        // Pairs kept through their colliders' regrouping are looked up again
+        // after the next step: by then Rapier has found them again, or not.
+        self.touched.extend(regrouped);
+        self.stats.hooked_pairs_answered = answered;
+        self.stats.tracked_pairs = self.pairs.len();
+        self.note_partners(narrow_phase, bodies, colliders);
+        self.stats.upkeep += start.elapsed();
+    }
+
+    /// Why every collider must be looked at and hooked, if it must.
+    fn full_pass(&self) -> Option<FullPass> {
+        if self.calculator.is_some() {
+            Some(FullPass::Calculator)
+        } else if self.on_created.is_some() {
+            Some(FullPass::PairCreatedCallback)
+        } else if self.policy == RecalculationPolicy::Manual {
+            Some(FullPass::ManualPolicy)
+        } else if !self.planner {
+            Some(FullPass::PlannerOff)
+        } else {
+            None
+        }
+    }
+
+    /// Starts watching `node` and every collider under it.
+    fn watch(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) {
+        if let Node::Body(body) = node {
+            self.roster.watch_body(bodies, body);
+        }
+        for c in self.colliders_under(node, bodies, colliders) {
+            if self.roster.watch_collider(bodies, colliders, c) {
+                self.candidates.push(c);
+            }
+        }
+    }
+
+    /// Forgets objects Rapier removed: their rules, the entries naming
+    /// them, their parent links, their plan and their pairs. A handle Rapier
+    /// reuses therefore starts with no rules.
+    fn forget_removed(
+        &mut self,
+        bodies: &RigidBodySet,
+        removed: &[(ColliderHandle, Option<RigidBodyHandle>)],
+        removed_bodies: &[RigidBodyHandle],
+    ) {
+        if !removed.is_empty() {
+            let gone: HashSet<ColliderHandle> = removed.iter().map(|r| r.0).collect();
+            self.pairs.retain(|key, _| {
+                let (a, b) = key.colliders();
+                !gone.contains(&a) && !gone.contains(&b)
+            });
+        }
+        for &(handle, body) in removed {
+            self.rules.remove_node(handle);
+            self.plan.colliders.remove(handle);
+            self.partners.remove(handle);
+            if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
+                self.rules.remove_node(body);
+            }
+        }
+        for &body in removed_bodies {
+            self.rules.remove_node(body);
+        }
+        self.stats.removed_objects = removed.len() + removed_bodies.len();
+    }
+
+    /// The pinned pairs: an override or a manifold setting keeps them hooked.
+    fn pinned(&self) -> Vec<PairKey> {
+        let mut pinned: Vec<PairKey> = self
+            .pairs
+            .iter()
+            .filter(|(_, s)| s.overridden.is_some() || s.manifold != ManifoldUpdate::ByRule)
+            .map(|(k, _)| k)
+            .collect();
+        pinned.sort_unstable_by_key(|k| {
+            let (a, b) = k.colliders();
+            (a.into_raw_parts(), b.into_raw_parts())
+        });
+        pinned
+    }
+
+    /// Plans every reached collider again (every collider in a full pass)
+    /// and gives each the flags, groups and types of its plan, touching only
+    /// those that differ; colliders no longer reached get Rapier's defaults back.
+    fn apply_plan(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+        let pinned = self.pinned();
+        let ruled = self.rules.ruled_nodes();
+        let reached: Vec<ColliderHandle> = self.roster.colliders().to_vec();
+        let request = Request {
+            rules: &self.rules,
+            bodies,
+            colliders,
+            reached: &reached,
+            ruled: &ruled,
+            pinned: &pinned,
+            all_hooked: self.full_pass(),
+        };
+        let plan = native::plan(&request);
+        // Never pairs: the hooked side also modifies the pair's contacts.
+        self.modifying = self
+            .pairs
+            .iter()
+            .filter(|(_, s)| s.manifold == ManifoldUpdate::Never)
+            .map(|(k, _)| {
+                let (a, b) = k.colliders();
+                if plan.colliders.get(a).is_some_and(|p| p.hooked()) {
+                    a
+                } else {
+                    b
+                }
+            })
+            .collect();
+        // Colliders planned before and not now go back to Rapier's defaults.
+        for &handle in &reached {
+            if plan.colliders.get(handle).is_none() {
+                if let Some(collider) = colliders.get(handle) {
+                    let dynamic = collider
+                        .parent()
+                        .and_then(|b| bodies.get(b))
+                        .is_some_and(|b| b.is_dynamic());
+                    self.configure(bodies, colliders, handle, ColliderPlan::unreached(dynamic));
+                }
+                self.plan.colliders.remove(handle);
+            }
+        }
+        let mut entries: Vec<_> = plan.colliders.iter().map(|(h, e)| (h, *e)).collect();
+        entries.sort_unstable_by_key(|(h, _)| h.into_raw_parts());
+        self.stats.planned_colliders = entries.len();
+        for &(handle, _) in &entries {
+            self.roster.watch_collider(bodies, colliders, handle);
+        }
+        for (handle, entry) in entries {
+            self.configure(bodies, colliders, handle, entry);
+        }
+        self.plan = plan;
+        self.replan = false;
+        self.candidates.clear();
+        self.count_hooked();
+    }
+
+    /// Plans the candidate colliders alone when the rest of the plan stands
+    /// (see `native::replan_some`), else everything reached.
+    fn apply_partial_plan(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+        let mut handles = std::mem::take(&mut self.candidates);
+        handles.sort_unstable_by_key(|h| h.into_raw_parts());
+        handles.dedup();
+        let pinned = self.pinned();
+        let request = Request {
+            rules: &self.rules,
+            bodies,
+            colliders,
+            reached: &handles,
+            ruled: &[],
+            pinned: &pinned,
+            all_hooked: self.full_pass(),
+        };
+        let Some(planned) = native::replan_some(&self.plan, &request, &handles) else {
+            return self.apply_plan(bodies, colliders);
+        };
+        self.stats.planned_colliders = planned.len();
+        for (handle, entry) in planned {
+            self.configure(bodies, colliders, handle, entry);
+            self.plan.colliders.insert(handle, entry);
+        }
+        self.count_hooked();
+    }
+
+    fn count_hooked(&mut self) {
+        self.hooked = self
+            .roster
+            .colliders()
+            .iter()
+            .filter(|&&c| self.plan.colliders.get(c).is_some_and(|p| p.hooked()))
+            .count();
+    }
+
+    /// Gives one collider the flags, groups and types of its plan entry,
+    /// touching it only if they differ, and keeps the bookkeeping that
+    /// follows (waking, newly hooked colliders, regrouping).
+    fn configure(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+        handle: ColliderHandle,
+        entry: ColliderPlan,
+    ) {
+        let Some(current) = colliders.get(handle) else {
+            return;
+        };
+        let body = current.parent().and_then(|b| bodies.get(b));
+        let dynamic = body.is_some_and(|b| b.is_dynamic());
+        let planned_before = self.plan.colliders.get(handle).is_some();
+        let before = self.plan.entry(handle, dynamic);
+        if self.policy != RecalculationPolicy::Manual && before != entry {
+            self.to_wake.extend(current.parent());
+        }
+        let mut hooks = if entry.hooked() {
+            HOOKS
+        } else {
+            ActiveHooks::empty()
+        };
+        if self.modifying.contains(&handle) {
+            hooks |= ActiveHooks::MODIFY_SOLVER_CONTACTS;
+        }
+        let same = current.active_hooks() == hooks
+            && current.collision_groups() == entry.collision
+            && current.solver_groups() == entry.solver
+            && current.active_collision_types() == entry.types;
+        if same {
+            return;
+        }
+        self.touched.push(handle);
+        if current.collision_groups() != entry.collision || current.solver_groups() != entry.solver
+        {
+            self.regrouped.insert(handle);
+        }
+        // A collider of a non-dynamic body may never wake: when the hook
+        // takes over (or lets go of) its pairs, Rapier must look at them.
+        let rehook = planned_before && current.active_hooks() != hooks && !dynamic;
+        if rehook {
+            self.regrouped.insert(handle);
+        }
+        // `get_mut` marks a collider modified: only for those that differ.
+        let collider = &mut colliders[handle];
+        collider.set_active_hooks(hooks);
+        collider.set_solver_groups(entry.solver);
+        if collider.active_collision_types() != entry.types || rehook {
+            collider.set_active_collision_types(entry.types);
+            // Changing the collision types alone sets no change flag:
+            // nudging the collision groups makes Rapier look again.
+            collider.set_collision_groups(InteractionGroups::none());
+        }
+        collider.set_collision_groups(entry.collision);
+    }
+
+    /// `node` itself if it is a collider, and every collider below it.
+    pub(super) fn colliders_under(
+        &self,
+        node: Node,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Vec<ColliderHandle> {
+        let mut below: Vec<ColliderHandle> = self
+            .rules
+            .descendants(node, bodies, colliders)
+            .into_iter()
+            .filter_map(|n| match n {
+                Node::Collider(c) => Some(c),
+                Node::Body(_) => None,
+            })
+            .collect();
+        if let Node::Collider(c) = node {
+            below.push(c);
+        }
+        below
+    }
+
+    /// Recalculates the live pairs that are `everything`, or touch an
+    /// `affected` collider, or a `forced` one (whose overrides are dropped).
+    /// Returns colliders of changed pairs between fixed bodies, which Rapier
+    /// must be made to look at again.
+    fn recalculate(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        everything: bool,
+        affected: &HashSet<ColliderHandle>,
+        forced: &HashSet<ColliderHandle>,
+    ) -> Vec<ColliderHandle> {
+        let mut refresh = Vec::new();
+        let mut updates = Vec::new();
+        for (key, _) in self.pairs.iter() {
+            let (a, b) = key.colliders();
+            let force = forced.contains(&a) || forced.contains(&b);
+            if force || everything || affected.contains(&a) || affected.contains(&b) {
+                updates.push((key, self.calculate(bodies, colliders, a, b), force));
+            }
+        }
+        self.stats.pairs_recalculated = updates.len();
+        for (key, computed, force) in updates {
+            let state = self
+                .pairs
+                .get_mut(key)
+                .expect("the key came from the table");
+            let before = state.rule();
+            state.computed = computed;
+            if force {
+                state.overridden = None;
+            }
+            if state.rule() != before {
+                let (a, b) = key.colliders();
+                self.wake_pair(a, b);
+                // Fixed bodies never wake: Rapier looks at their pair again
+                // only if a collider changed.
+                let fixed = |c| {
+                    colliders
+                        .get(c)
+                        .and_then(|c| c.parent())
+                        .and_then(|b| bodies.get(b))
+                        .is_none_or(|b| b.is_fixed())
+                };
+                if fixed(a) && fixed(b) {
+                    refresh.push(a);
+                }
+            }
+        }
+        refresh
+    }
+}
+
+/// Whether the rules reach `node`: it carries or is named by rules, is in
+/// the parent map, lies under such a node, or has settings of its own in
+/// the plan. The hooks watch exactly these.
+fn reached(
+    rules: &crate::CollisionRuleSet,
+    plan: &native::Plan,
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    node: Node,
+) -> bool {
+    if let Node::Collider(c) = node {
+        if plan
+            .colliders
+            .get(c)
+            .is_some_and(|p| !p.is_rapier_default())
+        {
+            return true;
+        }
+    }
+    let mut current = Some(node);
+    while let Some(n) = current {
+        let linked = match n {
+            Node::Body(b) => rules.in_hierarchy(b),
+            Node::Collider(_) => false,
+        };
+        if linked || rules.record(n).is_some() || rules.is_named(n) {
+            return true;
+        }
+        current = rules.hierarchy.next(bodies, colliders, n);
+    }
+    false
+}

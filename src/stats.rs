@@ -1,0 +1,78 @@
+//! What the last step did and cost: [`RuleHooks::stats`](crate::RuleHooks::stats).
+
+use std::time::Duration;
+
+/// Why the hooks look at every collider of the world before each step,
+/// instead of only at those the rules reach (`docs/performance.md`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum FullPass {
+    /// A custom calculator decides every pair: every collider is hooked.
+    Calculator,
+    /// A pair-created callback sees every pair: every collider is hooked.
+    PairCreatedCallback,
+    /// Under `RecalculationPolicy::Manual` pairs keep the rule they were
+    /// created with, which only the hook can remember: every collider is hooked.
+    ManualPolicy,
+    /// The planner is turned off (`RuleHooks::set_planner(false)`): every
+    /// collider is hooked.
+    PlannerOff,
+    /// A rule reaches the default groups: a table entry on
+    /// `DEFAULT_DYNAMIC` or `DEFAULT_KINEMATIC` (other than the built-in
+    /// kinematic entry), or a default rule other than `Normal`, so colliders
+    /// no other rule names still need settings of their own.
+    DefaultGroups,
+}
+
+/// What the last step of a [`RuleHooks`](crate::RuleHooks) did and cost:
+/// where to start when a world steps slower with the rules than without.
+///
+/// ```
+/// use rapier3d::prelude::*;
+/// use rapier_collision_rules::{CollisionRule, RuleHooks};
+///
+/// let mut world = PhysicsWorld::new();
+/// let ground = world.insert_body(RigidBodyBuilder::fixed());
+/// let floor = world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+/// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.0, 0.0)));
+/// world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
+/// let mut hooks = RuleHooks::default();
+/// hooks.rules_mut().set_specific(ghost, floor, CollisionRule::NoResponse);
+/// hooks.step(&mut world);
+///
+/// let stats = hooks.stats();
+/// assert_eq!(stats.full_pass, None, "only what the rules reach is looked at");
+/// assert_eq!(stats.hooked_colliders, 1, "the ghost carries the hook, not the floor");
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct StepStats {
+    /// Colliders carrying the hook flag: their pairs lose Rapier's contact
+    /// recycling and are answered by the hook.
+    pub hooked_colliders: usize,
+    /// Colliders the hooks watch (those the rules reach, and every collider
+    /// during a full pass).
+    pub watched_colliders: usize,
+    /// Rigid bodies the hooks watch (bodies carrying or named by rules, and
+    /// the bodies of the parent map).
+    pub watched_bodies: usize,
+    /// Why every collider was looked at; `None` when only the reached ones were.
+    pub full_pass: Option<FullPass>,
+    /// Colliders whose flags, groups or collision types were planned before
+    /// the step (all reached ones after a global edit, a few after a local one).
+    pub planned_colliders: usize,
+    /// Pairs the hook answered during the step (each pair once, however
+    /// many times it was asked).
+    pub hooked_pairs_answered: usize,
+    /// Pairs the hook met for the first time during the step.
+    pub pairs_created: usize,
+    /// Live pairs whose rule was recalculated before the step.
+    pub pairs_recalculated: usize,
+    /// Pairs the hooks keep state for (hooked pairs and overrides).
+    pub tracked_pairs: usize,
+    /// Colliders and bodies found removed and forgotten before the step.
+    pub removed_objects: usize,
+    /// Time spent by the hooks around Rapier's step (`prepare` and
+    /// `after_step`); the hook calls inside the step are not included.
+    pub upkeep: Duration,
+}

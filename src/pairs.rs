@@ -143,6 +143,10 @@ impl PairTable {
         self.pairs.len()
     }
 
+    pub(crate) fn is_empty(&self) -> bool {
+        self.pairs.is_empty()
+    }
+
     pub(crate) fn iter(&self) -> impl Iterator<Item = (PairKey, &PairState)> + '_ {
         self.pairs.iter().map(|(key, state)| (*key, state))
     }

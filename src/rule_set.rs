@@ -117,6 +117,10 @@ pub(crate) struct Changes {
 const CHANGE_LOG_LIMIT: usize = 4096;
 
 impl Changes {
+    pub(crate) fn is_empty(&self) -> bool {
+        !self.everything && self.records.is_empty() && self.nodes.is_empty()
+    }
+
     fn node(&mut self, node: Node) {
         if !self.everything {
             self.nodes.push(node);
@@ -857,6 +861,11 @@ impl CollisionRuleSet {
             self.remove_node(node);
         }
         missing.len()
+    }
+
+    /// Whether anything was edited since the last [`take_changes`](Self::take_changes).
+    pub(crate) fn has_changes(&self) -> bool {
+        !self.changes.is_empty()
     }
 
     /// The edits logged since the last call, and a fresh log.

@@ -1,7 +1,5 @@
 //! What the last step did and cost: [`RuleHooks::stats`](crate::RuleHooks::stats).
 
-use std::time::Duration;
-
 /// Why the hooks look at every collider of the world before each step,
 /// instead of only at those the rules reach (`docs/performance.md`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -72,7 +70,8 @@ pub struct StepStats {
     pub tracked_pairs: usize,
     /// Colliders and bodies found removed and forgotten before the step.
     pub removed_objects: usize,
-    /// Time spent by the hooks around Rapier's step (`prepare` and
-    /// `after_step`); the hook calls inside the step are not included.
-    pub upkeep: Duration,
+    /// Whether the hooks looked up hooked pairs in Rapier's graph after the
+    /// step. They skip it when no body was awake before or after the step
+    /// and nothing changed (a resting pair cannot have ended).
+    pub swept: bool,
 }

@@ -8,12 +8,12 @@
 //! planner configures (groups, collision types). The `*_in` methods take
 //! the world and answer for every pair Rapier holds, on demand.
 
-use std::sync::PoisonError;
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use rapier3d::prelude::*;
 
 use super::RuleHooks;
-use super::upkeep::{pair_exists, partners_of};
+use super::upkeep::{pair_exists, partners_of, same_body};
 use crate::native::{self, Class};
 use crate::pairs::{ManifoldUpdate, PairKey, PairState};
 use crate::{CollisionRule, Node};
@@ -49,15 +49,45 @@ impl<'a> From<&'a PhysicsWorld> for WorldRef<'a> {
     }
 }
 
-/// The pairs of one native collider the plan configures, as of the last
-/// step in which it was looked at: each partner and whether its body was
-/// dynamic (an unreached partner's class).
+/// Whether the list is sorted, and each noted pair with its colliders' classes.
+type Noted = (bool, Vec<(PairKey, Class, Class)>);
+
+/// The pairs of the native colliders the rules reach, noted after each
+/// step with the classes of their two colliders: what `pair_rule` and
+/// `pairs` answer from for pairs without a hooked collider. Sorted on the
+/// first query after a step (queries are rare, steps are not).
 #[derive(Debug, Default)]
-pub(crate) struct Partners {
-    step: u64,
-    /// Whether this collider's body was dynamic.
-    dynamic: bool,
-    list: Vec<(ColliderHandle, bool)>,
+pub(crate) struct Notes {
+    pairs: Mutex<Noted>,
+    /// One bit per collider slot: set for the noted colliders.
+    bits: Vec<u64>,
+}
+
+impl Notes {
+    fn sorted(&self) -> MutexGuard<'_, Noted> {
+        let mut pairs = self.pairs.lock().unwrap_or_else(PoisonError::into_inner);
+        if !pairs.0 {
+            pairs.1.sort_unstable_by_key(|(k, _, _)| key_order(*k));
+            pairs.0 = true;
+        }
+        pairs
+    }
+
+    fn noted(&self, c: ColliderHandle) -> bool {
+        bit(&self.bits, c)
+    }
+}
+
+/// Whether the bit of `c`'s slot is set.
+fn bit(bits: &[u64], c: ColliderHandle) -> bool {
+    let index = c.into_raw_parts().0 as usize;
+    bits.get(index / 64)
+        .is_some_and(|w| w >> (index % 64) & 1 == 1)
+}
+
+fn key_order(key: PairKey) -> ((u32, u32), (u32, u32)) {
+    let (a, b) = key.colliders();
+    (a.into_raw_parts(), b.into_raw_parts())
 }
 
 /// Live pairs.
@@ -123,25 +153,13 @@ impl RuleHooks {
             .iter()
             .filter(|(_, state)| !state.absent)
             .map(|(key, state)| (key.colliders(), state.rule()));
-        let noted = self.roster.colliders().iter().flat_map(move |&c| {
-            let list = self.partners.get(c).map_or(&[][..], |p| &p.list[..]);
-            list.iter().filter_map(move |&(other, _)| {
-                // Each pair once: from the fresher side when both are noted.
-                let theirs = self.partners.get(other).map(|p| p.step);
-                let mine = self.partners.get(c).map(|p| p.step);
-                let from_here = match theirs {
-                    None => true,
-                    Some(step) => {
-                        mine > Some(step)
-                            || (mine == Some(step) && c.into_raw_parts() < other.into_raw_parts())
-                    }
-                };
-                if !from_here || self.pairs.get(PairKey::new(c, other)).is_some() {
-                    return None;
-                }
-                self.noted_rule(c, other).map(|rule| ((c, other), rule))
-            })
-        });
+        let noted: Vec<_> = self
+            .notes
+            .sorted()
+            .1
+            .iter()
+            .map(|&(key, x, y)| (key.colliders(), native::class_rule(&self.rules, x, y)))
+            .collect();
         hooked
             .chain(noted)
             .filter(|&(_, rule)| rule != CollisionRule::NoPair)
@@ -164,6 +182,9 @@ impl RuleHooks {
             .intersection_pairs()
             .map(|(a, b, _)| (a, b));
         contacts.chain(sensors).filter_map(move |(a, b)| {
+            if same_body(world.colliders, a, b) {
+                return None;
+            }
             let rule = match self.pairs.get(PairKey::new(a, b)) {
                 // Rapier holds it: a pair kept through regrouping is back.
                 Some(state) => state.rule(),
@@ -307,29 +328,17 @@ impl RuleHooks {
     /// native collider the rules reach and its partner; `None` if no such
     /// pair was noted.
     fn noted_rule(&self, a: ColliderHandle, b: ColliderHandle) -> Option<CollisionRule> {
-        // The fresher of the two sides' notes tells whether the pair exists.
-        let (pa, pb) = (self.partners.get(a), self.partners.get(b));
-        let (from, other, notes) = match (pa, pb) {
-            (Some(x), Some(y)) if y.step > x.step => (b, a, y),
-            (Some(x), _) => (a, b, x),
-            (None, Some(y)) => (b, a, y),
-            (None, None) => return None,
-        };
-        let &(_, other_dynamic) = notes.list.iter().find(|(c, _)| *c == other)?;
-        // A pair with a hooked collider is the hook's, in the table.
-        let hooked = |c| self.plan.colliders.get(c).is_some_and(|p| p.hooked());
-        if hooked(a) || hooked(b) {
+        if !self.notes.noted(a) && !self.notes.noted(b) {
             return None;
         }
-        let class = |c: ColliderHandle, dynamic: bool| {
-            self.plan
-                .colliders
-                .get(c)
-                .map_or(Some(Class::unreached(dynamic)), |p| p.class)
-        };
-        let from_class = class(from, notes.dynamic)?;
-        let other_class = class(other, other_dynamic)?;
-        Some(native::class_rule(&self.rules, from_class, other_class))
+        let key = PairKey::new(a, b);
+        let notes = self.notes.sorted();
+        let at = notes
+            .1
+            .binary_search_by_key(&key_order(key), |(k, _, _)| key_order(*k))
+            .ok()?;
+        let (_, x, y) = notes.1[at];
+        Some(native::class_rule(&self.rules, x, y))
     }
 
     /// The rule of a pair Rapier holds now, decided natively (not hooked);
@@ -342,6 +351,7 @@ impl RuleHooks {
     ) -> Option<CollisionRule> {
         let held = world.colliders.contains(a)
             && world.colliders.contains(b)
+            && !same_body(world.colliders, a, b)
             && pair_exists(world.narrow_phase, a, b);
         held.then(|| self.rules.resolve(world.bodies, world.colliders, a, b))
     }
@@ -371,40 +381,87 @@ impl RuleHooks {
 
     /// Notes the pairs of every native collider the rules reach, after
     /// each step: a resting collider's pairs change when an awake partner
-    /// the rules do not reach moves, which nothing else tells. The cost is
-    /// a walk of these colliders' pairs in Rapier's graph.
-    pub(super) fn note_partners(
+    /// the rules do not reach moves, which nothing else tells. Walking one
+    /// collider's pairs in Rapier's graph costs about as much as reading 64
+    /// entries of Rapier's pair list in order, so with many noted colliders
+    /// the list is read once instead.
+    pub(super) fn note_pairs(
         &mut self,
         narrow_phase: &NarrowPhase,
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
     ) {
-        let step = self.step;
-        for &c in self.roster.colliders() {
-            // A hooked collider's pairs are in the table.
-            let noted =
-                colliders.contains(c) && !self.plan.colliders.get(c).is_some_and(|p| p.hooked());
-            if !noted {
-                self.partners.remove(c);
-                continue;
-            }
-            let dynamic_of = |other: ColliderHandle| {
-                colliders
-                    .get(other)
+        let Notes { pairs, bits } = &mut self.notes;
+        let pairs = pairs.get_mut().unwrap_or_else(PoisonError::into_inner);
+        pairs.0 = false;
+        pairs.1.clear();
+        bits.iter_mut().for_each(|w| *w = 0);
+        let plan = &self.plan;
+        // A hooked collider's pairs are in the table.
+        let class_of = |c: ColliderHandle| match plan.colliders.get(c) {
+            Some(entry) => entry.class,
+            None => {
+                let dynamic = colliders
+                    .get(c)
                     .and_then(|o| o.parent())
                     .and_then(|b| bodies.get(b))
-                    .is_some_and(|b| b.is_dynamic())
-            };
-            if self.partners.get(c).is_none() {
-                self.partners.insert(c, Partners::default());
+                    .is_some_and(|b| b.is_dynamic());
+                Some(Class::unreached(dynamic))
             }
-            let partners = self.partners.get_mut(c).expect("inserted above");
-            partners.step = step;
-            partners.dynamic = dynamic_of(c);
-            partners.list.clear();
-            partners
-                .list
-                .extend(partners_of(narrow_phase, c).map(|other| (other, dynamic_of(other))));
+        };
+        let mut noted = 0;
+        for &c in self.roster.colliders() {
+            if colliders.contains(c) && plan.colliders.get(c).is_some_and(|p| !p.hooked()) {
+                let index = c.into_raw_parts().0 as usize;
+                if index / 64 >= bits.len() {
+                    bits.resize(index / 64 + 1, 0);
+                }
+                bits[index / 64] |= 1 << (index % 64);
+                noted += 1;
+            }
+        }
+        if noted == 0 {
+            return;
+        }
+        let bits: &[u64] = bits;
+        let mut note = |a: ColliderHandle, b: ColliderHandle| {
+            if same_body(colliders, a, b) {
+                return;
+            }
+            if let (Some(x), Some(y)) = (class_of(a), class_of(b)) {
+                let key = PairKey::new(a, b);
+                let (x, y) = if key.colliders().0 == a {
+                    (x, y)
+                } else {
+                    (y, x)
+                };
+                pairs.1.push((key, x, y));
+            }
+        };
+        let listed = narrow_phase.contact_pairs().size_hint().0
+            + narrow_phase.intersection_pairs().size_hint().0;
+        if noted * 64 < listed {
+            for &c in self.roster.colliders() {
+                if !bit(bits, c) {
+                    continue;
+                }
+                for other in partners_of(narrow_phase, c) {
+                    // A pair of two noted colliders is noted from its first side.
+                    if !bit(bits, other) || PairKey::new(c, other).colliders().0 == c {
+                        note(c, other);
+                    }
+                }
+            }
+        } else {
+            let contacts = narrow_phase
+                .contact_pairs()
+                .map(|p| (p.collider1, p.collider2));
+            let sensors = narrow_phase.intersection_pairs().map(|(a, b, _)| (a, b));
+            for (a, b) in contacts.chain(sensors) {
+                if bit(bits, a) || bit(bits, b) {
+                    note(a, b);
+                }
+            }
         }
     }
 }

@@ -15,7 +15,6 @@ use hashbrown::{HashMap, HashSet};
 use rapier3d::prelude::*;
 
 use crate::native::Plan;
-use crate::node::HandleMap;
 use crate::pairs::{PairKey, PairState, PairTable};
 use crate::{CollisionRule, CollisionRuleSet, Node, StepStats};
 
@@ -141,12 +140,14 @@ pub struct RuleHooks {
     touched: Vec<ColliderHandle>,
     /// The colliders and bodies the hooks watch.
     roster: Roster,
-    /// The pairs of each native collider the plan configures, as of its last
-    /// look (see `live.rs`).
-    partners: HandleMap<ColliderHandle, live::Partners>,
+    /// The pairs of the native colliders the rules reach, as of the last
+    /// step (see `live.rs`).
+    notes: live::Notes,
     stats: StepStats,
     /// How many colliders the last plan hooked.
     hooked: usize,
+    /// Test oracle: look at every collider and plan everything every step.
+    exhaustive: bool,
 }
 
 impl std::fmt::Debug for RuleHooks {
@@ -190,9 +191,10 @@ impl RuleHooks {
             regrouped: HashSet::new(),
             touched: Vec::new(),
             roster: Roster::default(),
-            partners: HandleMap::default(),
+            notes: live::Notes::default(),
             stats: StepStats::default(),
             hooked: 0,
+            exhaustive: false,
         }
     }
 
@@ -228,6 +230,15 @@ impl RuleHooks {
     pub fn set_planner(&mut self, enabled: bool) {
         self.planner = enabled;
         self.replan = true;
+    }
+
+    /// The tests' oracle: with `true`, every step looks at every collider,
+    /// rebuilds the roster from the rule set and plans everything, as the
+    /// hooks did before they followed what the rules reach. Slow; for
+    /// comparing against the incremental upkeep.
+    #[doc(hidden)]
+    pub fn set_exhaustive(&mut self, exhaustive: bool) {
+        self.exhaustive = exhaustive;
     }
 
     /// Whether the planner is on (see [`set_planner`](Self::set_planner)).

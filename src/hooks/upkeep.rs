@@ -7,7 +7,6 @@
 //! (`docs/architecture.md`, "Cost per step").
 
 use std::sync::PoisonError;
-use std::time::Instant;
 
 use hashbrown::HashSet;
 use rapier3d::prelude::*;
@@ -28,6 +27,13 @@ pub(super) fn pair_exists(
     b: ColliderHandle,
 ) -> bool {
     narrow_phase.contact_pair(a, b).is_some() || narrow_phase.intersection_pair(a, b).is_some()
+}
+
+/// Whether `a` and `b` are on one rigid body: Rapier never lets them
+/// interact (its graph may still hold their pair), so they form no pair.
+pub(super) fn same_body(colliders: &ColliderSet, a: ColliderHandle, b: ColliderHandle) -> bool {
+    let body = |c: ColliderHandle| colliders.get(c).and_then(|c| c.parent());
+    body(a).is_some() && body(a) == body(b)
 }
 
 /// Every collider Rapier pairs with `collider`.
@@ -68,8 +74,10 @@ impl RuleHooks {
         self.prepare(&world.bodies, &mut world.colliders);
         self.freeze_manifolds(&world.narrow_phase);
         self.wake_edited(&mut world.islands, &mut world.bodies);
+        let resting = world.islands.num_active_bodies() == 0;
         world.step_with_events(&*self, events);
-        self.after_step(&world.narrow_phase, &world.bodies, &world.colliders);
+        let quiet = resting && world.islands.num_active_bodies() == 0;
+        self.finish_step(&world.narrow_phase, &world.bodies, &world.colliders, quiet);
     }
 
     /// Before a bare `PhysicsPipeline::step`: notices what the edits touched
@@ -81,10 +89,29 @@ impl RuleHooks {
     /// [`wake_edited`](Self::wake_edited) next, then step with these hooks,
     /// then [`after_step`](Self::after_step).
     pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
-        let start = Instant::now();
         self.step += 1;
-        self.stats = StepStats::default();
+        self.stats = StepStats {
+            hooked_colliders: self.hooked,
+            tracked_pairs: self.pairs.len(),
+            ..StepStats::default()
+        };
         let full = self.full_pass();
+        self.replan |= self.exhaustive;
+        // The common case of a world the rules do not reach: nothing to do.
+        let idle = self.roster.collider_count() == 0
+            && self.roster.body_count() == 0
+            && full.is_none()
+            && self.plan.full.is_none()
+            && !self.replan
+            && !self.rules.has_changes()
+            && self.candidates.is_empty()
+            && self.forced.is_empty()
+            && self.wake_colliders.is_empty()
+            && !self.recalculate_all
+            && self.policy != RecalculationPolicy::EveryStep;
+        if idle {
+            return;
+        }
         if full != self.plan.full && (full.is_some() || self.plan.full.is_some()) {
             self.replan = true;
         }
@@ -92,8 +119,8 @@ impl RuleHooks {
         // 1. What the edits touched starts being watched.
         let changes = self.rules.take_changes();
         let mut changed = match self.rules.touched_nodes(&changes) {
-            Some(nodes) => nodes,
-            None => {
+            Some(nodes) if !self.exhaustive => nodes,
+            _ => {
                 self.replan = true;
                 self.rules.ruled_nodes()
             }
@@ -103,17 +130,19 @@ impl RuleHooks {
         }
 
         // 2. Look at what is watched: removals, changes, additions.
-        let everything = self.plan.full.is_some() || full.is_some();
+        let everything = self.plan.full.is_some() || full.is_some() || self.exhaustive;
+        // Whether the rules still reach a watched object changes only with
+        // an edit (or a removal, which the next step's look prunes).
+        let prune = !changed.is_empty() || self.replan || !self.forced.is_empty();
         let look = {
             let (rules, plan) = (&self.rules, &self.plan);
             self.roster.look(bodies, colliders, everything, |node| {
-                reached(rules, plan, bodies, colliders, node)
+                !prune || reached(rules, plan, bodies, colliders, node)
             })
         };
         self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
         for &c in &look.released {
             self.plan.colliders.remove(c);
-            self.partners.remove(c);
         }
         changed.extend(look.changed);
         // Forgetting a removed parent changes its children's chains.
@@ -121,13 +150,17 @@ impl RuleHooks {
         if let Some(more) = self.rules.touched_nodes(&removal_changes) {
             changed.extend(more);
         }
+        // 3. Plan the colliders under every changed node, and those newly
+        // watched (a collider moved onto a watched body may have hooked pairs
+        // whose rule its new chain changes).
+        let mut under: HashSet<ColliderHandle> = look.added.iter().copied().collect();
         self.candidates.extend(look.added);
-
-        // 3. Plan the colliders under every changed node.
-        let mut under = HashSet::new();
         for &node in &changed {
             under.extend(self.colliders_under(node, bodies, colliders));
         }
+        // Their pairs may have changed in Rapier too: looked up after the step.
+        self.touched.extend(under.iter().copied());
+        self.touched.extend(self.candidates.iter().copied());
         if self.replan {
             self.apply_plan(bodies, colliders);
         } else {
@@ -172,7 +205,6 @@ impl RuleHooks {
         self.stats.full_pass = self.plan.full;
         self.stats.watched_colliders = self.roster.collider_count();
         self.stats.watched_bodies = self.roster.body_count();
-        self.stats.upkeep = start.elapsed();
     }
 
     /// Settles `ManifoldUpdate::Never` settings made since the last step
@@ -223,7 +255,30 @@ impl RuleHooks {
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
     ) {
-        let start = Instant::now();
+        self.finish_step(narrow_phase, bodies, colliders, false);
+    }
+
+    /// [`after_step`](Self::after_step); `quiet` when no body was awake
+    /// before or after the step, so that no pair can have ended unless
+    /// something was changed before it.
+    fn finish_step(
+        &mut self,
+        narrow_phase: &NarrowPhase,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        quiet: bool,
+    ) {
+        let pending_empty = self
+            .pending
+            .get_mut()
+            .unwrap_or_else(PoisonError::into_inner)
+            .is_empty();
+        let unchanged = pending_empty && self.touched.is_empty() && self.regrouped.is_empty();
+        let nothing = self.pairs.is_empty() && self.roster.collider_count() == 0;
+        if unchanged && !self.exhaustive && (quiet || nothing) {
+            return;
+        }
+        self.stats.swept = true;
         // Rapier finds a pair by slot: a handle whose slot was reused must
         // not find the new collider's pair.
         let exists = |key: PairKey| {
@@ -256,7 +311,7 @@ impl RuleHooks {
             }
             for other in partners_of(narrow_phase, c) {
                 let key = PairKey::new(c, other);
-                if self.pairs.get(key).is_none() {
+                if self.pairs.get(key).is_none() && !same_body(colliders, c, other) {
                     unseen.push(key);
                 }
             }
@@ -283,6 +338,9 @@ impl RuleHooks {
                 // Both sides native now: Rapier decides the pair itself.
                 false
             } else if !colliders.contains(a) || !colliders.contains(b) {
+                false
+            } else if (touched.contains(&a) || touched.contains(&b)) && same_body(colliders, a, b) {
+                // Moved onto one body: Rapier never lets them interact.
                 false
             } else if regrouped.contains(&a) || regrouped.contains(&b) {
                 state.absent = !pair_exists(narrow_phase, a, b);
@@ -313,8 +371,7 @@ impl RuleHooks {
         self.touched.extend(regrouped);
         self.stats.hooked_pairs_answered = answered;
         self.stats.tracked_pairs = self.pairs.len();
-        self.note_partners(narrow_phase, bodies, colliders);
-        self.stats.upkeep += start.elapsed();
+        self.note_pairs(narrow_phase, bodies, colliders);
     }
 
     /// Why every collider must be looked at and hooked, if it must.
@@ -363,7 +420,6 @@ impl RuleHooks {
         for &(handle, body) in removed {
             self.rules.remove_node(handle);
             self.plan.colliders.remove(handle);
-            self.partners.remove(handle);
             if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
                 self.rules.remove_node(body);
             }

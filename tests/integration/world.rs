@@ -19,6 +19,12 @@ pub enum Edit {
     RemoveCollider(usize),
     RemoveBody(usize),
     AddCube(f32, f32, usize),
+    /// A second collider on a body.
+    AddCollider(usize),
+    /// A collider moved to another body through Rapier.
+    MoveCollider(usize, usize),
+    Sleep(usize),
+    Wake(usize),
     Step(usize),
 }
 
@@ -153,6 +159,34 @@ impl Run {
                 }
             }
             Edit::AddCube(x, y, kind) => self.add_cube(x, y, kind),
+            Edit::AddCollider(b) => {
+                let handle = self.body(b);
+                if self.world.bodies.contains(handle) {
+                    let shape = ColliderBuilder::ball(0.3).translation(Vector::new(0.0, 0.5, 0.0));
+                    let collider = self.world.insert_collider(shape, Some(handle));
+                    self.colliders.push(collider);
+                }
+            }
+            Edit::MoveCollider(c, b) => {
+                let (handle, body) = (self.colliders[c % self.colliders.len()], self.body(b));
+                let world = &mut self.world;
+                if world.colliders.contains(handle) && world.bodies.contains(body) {
+                    world
+                        .colliders
+                        .set_parent(handle, Some(body), &mut world.bodies);
+                }
+            }
+            Edit::Sleep(b) => {
+                if let Some(body) = self.world.bodies.get_mut(self.body(b)) {
+                    body.sleep();
+                }
+            }
+            Edit::Wake(b) => {
+                let handle = self.body(b);
+                if self.world.bodies.contains(handle) {
+                    self.world.wake_up(handle, true);
+                }
+            }
             Edit::Step(n) => {
                 for _ in 0..n {
                     self.step();
@@ -178,6 +212,54 @@ impl Run {
             .collect();
         live.sort();
         live
+    }
+
+    /// The live pairs the hooks know without the world (`pairs()`), sorted.
+    pub fn known(&self) -> Vec<(Raw, Raw, CollisionRule)> {
+        let mut known: Vec<_> = self
+            .hooks
+            .pairs()
+            .map(|(a, b, rule)| {
+                let (a, b) = (a.into_raw_parts(), b.into_raw_parts());
+                (a.min(b), a.max(b), rule)
+            })
+            .collect();
+        known.sort();
+        known
+    }
+
+    /// The rules `pair_rule` gives the pairs of `pairs`, in their order.
+    pub fn known_among(
+        &self,
+        pairs: &[(Raw, Raw, CollisionRule)],
+    ) -> Vec<(Raw, Raw, CollisionRule)> {
+        pairs
+            .iter()
+            .filter_map(|&(a, b, _)| {
+                let (ca, cb) = (
+                    ColliderHandle::from_raw_parts(a.0, a.1),
+                    ColliderHandle::from_raw_parts(b.0, b.1),
+                );
+                self.hooks.pair_rule(ca, cb).map(|rule| (a, b, rule))
+            })
+            .collect()
+    }
+
+    /// Every body's position, bit for bit, in handle order.
+    pub fn poses(&self) -> Vec<[u32; 7]> {
+        let mut poses: Vec<_> = self
+            .world
+            .bodies
+            .iter()
+            .map(|(handle, body)| {
+                let p = body.position();
+                let (t, r) = (p.translation, p.rotation);
+                let (index, _) = handle.into_raw_parts();
+                (index, [t.x, t.y, t.z, r.x, r.y, r.z, r.w].map(f32::to_bits))
+            })
+            .collect();
+        poses.sort_by_key(|p| p.0);
+        poses.into_iter().map(|p| p.1).collect()
     }
 
     /// The pairs with contacts, sorted.
@@ -213,10 +295,14 @@ impl Run {
         }
         let narrow_phase = &self.world.narrow_phase;
         let sensors = narrow_phase.intersection_pairs().map(|(a, b, _)| (a, b));
+        // Colliders of one body form no pair, though Rapier's graph may
+        // hold an edge for them.
+        let body = |c: ColliderHandle| colliders.get(c).and_then(|c| c.parent());
         let rapier: Vec<_> = narrow_phase
             .contact_pairs()
             .map(|p| (p.collider1, p.collider2))
             .chain(sensors)
+            .filter(|&(a, b)| body(a).is_none() || body(a) != body(b))
             .collect();
         for &(a, b) in &rapier {
             let expected = Some(rules.resolve(bodies, colliders, a, b))

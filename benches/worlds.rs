@@ -1,0 +1,449 @@
+//! Step cost of `RuleHooks` against plain Rapier on worlds shaped like real
+//! games, where most of the world is idle: what the rules cost must follow
+//! what they reach, not the size of the world.
+//!
+//! - `level`: a static level of `n` fixed tiles (one fixed body), 4,000
+//!   boxes resting on it (asleep), 200 balls that never sleep. Variants:
+//!   `none` (no rules) and `rules` (10 balls with a personal rule, 10 with
+//!   a specific rule about a ball they never meet: per-object rules that
+//!   leave the physics as it is);
+//! - `field`: `n` boxes on one ground slab, all asleep, no rules;
+//! - `floor`: 2,000 boxes that never sleep on one floor, and one ball with
+//!   the README's quick-start rule `set_specific(ghost, floor, NoResponse)`,
+//!   against the same ghost excluded from the floor by hand-written Rapier
+//!   solver groups;
+//! - `pile`: the 1,000-box pile of `benches/step.rs` allowed to fall
+//!   asleep, with no rules and with specific rules on 5% of the bodies.
+//!
+//! Each variant steps two identical worlds in lockstep, one plain, one with
+//! the rules, and times them back to back (the paired ratio: median, min
+//! and max of five runs). `WORLDS_OUT=docs` writes `upkeep.csv` and
+//! `upkeep.svg` there (step time against world size, level and field).
+//!
+//! `cargo bench --bench worlds` (criterion, then the paired ratios);
+//! `WORLDS_PAIRED_ONLY=1` skips criterion.
+
+use std::fmt::Write as _;
+use std::time::{Duration, Instant};
+
+use criterion::{BenchmarkId, Criterion, criterion_group};
+use plotters::prelude::*;
+use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
+use rapier3d::prelude::*;
+
+const SIZES: [usize; 4] = [1_000, 4_000, 16_000, 64_000];
+
+/// A world, the rules for its twin, and what its plain twin needs by hand.
+struct Scene {
+    world: PhysicsWorld,
+    rules: CollisionRuleSet,
+}
+
+/// Steps until no more than `awake` bodies are awake (those that never
+/// sleep), or `limit` steps.
+fn settle(world: &mut PhysicsWorld, awake: usize, limit: usize) {
+    for _ in 0..limit {
+        world.step();
+        if world.islands.num_active_bodies() <= awake {
+            break;
+        }
+    }
+}
+
+/// The level: `tiles` fixed tiles, 4,000 resting boxes, 200 awake balls.
+fn level(tiles: usize, with_rules: bool) -> Scene {
+    let mut world = PhysicsWorld::new();
+    let side = (tiles as f32).sqrt().ceil() as usize;
+    let ground = world.insert_body(RigidBodyBuilder::fixed());
+    for i in 0..tiles {
+        let (x, z) = ((i % side) as f32 * 2.0, (i / side) as f32 * 2.0);
+        world.insert_collider(
+            ColliderBuilder::cuboid(1.0, 0.5, 1.0).translation(Vector::new(x, -0.5, z)),
+            Some(ground),
+        );
+    }
+    let extent = side as f32 * 2.0 - 2.0;
+    let grid = |count: usize, offset: f32| {
+        let per_row = (count as f32).sqrt().ceil() as usize;
+        let spacing = extent / per_row as f32;
+        (0..count).map(move |i| {
+            let (x, z) = ((i % per_row) as f32, (i / per_row) as f32);
+            (
+                x * spacing + offset * spacing,
+                z * spacing + offset * spacing,
+            )
+        })
+    };
+    for (x, z) in grid(4_000, 0.25) {
+        let body =
+            world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(x, 0.2, z)));
+        world.insert_collider(ColliderBuilder::cuboid(0.2, 0.2, 0.2), Some(body));
+    }
+    let mut balls = Vec::new();
+    for (x, z) in grid(200, 0.75) {
+        let body = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .translation(Vector::new(x, 0.15, z))
+                .can_sleep(false),
+        );
+        world.insert_collider(ColliderBuilder::ball(0.15), Some(body));
+        balls.push(body);
+    }
+    settle(&mut world, 200, 2_000);
+    let mut rules = CollisionRuleSet::default();
+    if with_rules {
+        for (i, &ball) in balls.iter().take(20).enumerate() {
+            if i % 2 == 0 {
+                rules.set_personal(ball, CollisionRule::Normal);
+            } else {
+                // A ball half the level away: they never meet.
+                rules.set_specific(ball, balls[i + 100], CollisionRule::NoPair);
+            }
+        }
+    }
+    Scene { world, rules }
+}
+
+/// `n` boxes on one ground slab, all asleep.
+fn field(n: usize) -> Scene {
+    let mut world = PhysicsWorld::new();
+    let side = (n as f32).sqrt().ceil() as usize;
+    let half = side as f32;
+    let ground = world.insert_body(RigidBodyBuilder::fixed());
+    world.insert_collider(
+        ColliderBuilder::cuboid(half + 1.0, 0.5, half + 1.0)
+            .translation(Vector::new(half, -0.5, half)),
+        Some(ground),
+    );
+    for i in 0..n {
+        let (x, z) = ((i % side) as f32 * 2.0, (i / side) as f32 * 2.0);
+        let body =
+            world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(x, 0.5, z)));
+        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
+    }
+    settle(&mut world, 0, 2_000);
+    Scene {
+        world,
+        rules: CollisionRuleSet::default(),
+    }
+}
+
+/// 2,000 awake boxes and a ghost ball on one floor. With `by_hand`, the
+/// ghost passes the floor through Rapier solver groups; else through the
+/// quick-start rule.
+fn floor(by_hand: bool) -> Scene {
+    let mut world = PhysicsWorld::new();
+    let ground = world.insert_body(RigidBodyBuilder::fixed());
+    let floor = world.insert_collider(
+        ColliderBuilder::cuboid(50.0, 0.5, 50.0).translation(Vector::new(0.0, -0.5, 0.0)),
+        Some(ground),
+    );
+    for i in 0..2_000 {
+        let (x, z) = ((i % 45) as f32 * 2.0 - 45.0, (i / 45) as f32 * 2.0 - 45.0);
+        let body = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .translation(Vector::new(x, 0.5, z))
+                .can_sleep(false),
+        );
+        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
+    }
+    let ghost = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(0.0, 5.0, 46.0))
+            .can_sleep(false),
+    );
+    let g = world.insert_collider(ColliderBuilder::ball(0.4), Some(ghost));
+    let mut rules = CollisionRuleSet::default();
+    if by_hand {
+        let solver = |member: u32, excluded: u32| {
+            InteractionGroups::new(
+                Group::from_bits_retain(member),
+                Group::ALL - Group::from_bits_retain(excluded),
+                InteractionTestMode::And,
+            )
+        };
+        world.colliders[g].set_solver_groups(solver(1, 2));
+        world.colliders[floor].set_solver_groups(solver(2, 1));
+    } else {
+        rules.set_specific(ghost, floor, CollisionRule::NoResponse);
+    }
+    for _ in 0..30 {
+        world.step();
+    }
+    Scene { world, rules }
+}
+
+/// The pile of `benches/step.rs` (1,000 boxes in columns of ten), allowed
+/// to sleep and settled until it does; `specific` puts rules on 5% of it.
+fn sleeping_pile(specific: bool) -> Scene {
+    let n = 1_000;
+    let mut world = PhysicsWorld::new();
+    let ground =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+    world.insert_collider(ColliderBuilder::cuboid(500.0, 0.5, 500.0), Some(ground));
+    let side = ((n / 10) as f32).sqrt().ceil() as usize;
+    let mut boxes = Vec::with_capacity(n);
+    for i in 0..n {
+        let column = i / 10;
+        let (x, z) = ((column % side) as f32 * 1.01, (column / side) as f32 * 1.01);
+        let y = 0.5 + (i % 10) as f32 * 1.001;
+        let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(x, y, z)));
+        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
+        boxes.push(body);
+    }
+    settle(&mut world, 0, 3_000);
+    let mut rules = CollisionRuleSet::default();
+    if specific {
+        for i in (0..n).step_by(20) {
+            let rule = if i % 40 == 0 {
+                CollisionRule::NoResponse
+            } else {
+                CollisionRule::NoContacts
+            };
+            rules.set_specific(boxes[i], boxes[(i + n / 2) % n], rule);
+        }
+    }
+    Scene { world, rules }
+}
+
+/// Two identical worlds, one stepped plainly, one with the rules.
+struct Twins {
+    plain: PhysicsWorld,
+    world: PhysicsWorld,
+    hooks: RuleHooks,
+}
+
+impl Twins {
+    fn new(make: &dyn Fn(bool) -> Scene) -> Twins {
+        let plain = make(false).world;
+        let Scene { world, rules } = make(true);
+        let mut twins = Twins {
+            plain,
+            world,
+            hooks: RuleHooks::new(rules),
+        };
+        // The first step plans; what is measured is the steady state.
+        twins.time(2, true);
+        twins.time(2, false);
+        twins
+    }
+
+    /// Times `iters` steps of one world, stepping the other untimed.
+    fn time(&mut self, iters: u64, rules: bool) -> Duration {
+        let mut timed = Duration::ZERO;
+        for _ in 0..iters {
+            let start = Instant::now();
+            if rules {
+                self.hooks.step(&mut self.world);
+                timed += start.elapsed();
+                self.plain.step();
+            } else {
+                self.plain.step();
+                timed += start.elapsed();
+                self.hooks.step(&mut self.world);
+            }
+        }
+        timed
+    }
+
+    /// Five paired runs: each the ratio of the rules world's time to the
+    /// plain one's over step pairs timed back to back, and the extra time
+    /// per step. Each run lasts at least 0.3 s and 50 pairs.
+    fn paired(&mut self) -> Paired {
+        let mut runs = Vec::new();
+        for _ in 0..5 {
+            let (mut plain, mut rules, mut pairs) = (Duration::ZERO, Duration::ZERO, 0u32);
+            while pairs < 50 || plain + rules < Duration::from_millis(300) {
+                plain += self.time(1, false);
+                rules += self.time(1, true);
+                pairs += 1;
+            }
+            runs.push((
+                rules.as_secs_f64() / plain.as_secs_f64(),
+                plain.as_secs_f64() / f64::from(pairs),
+                rules.as_secs_f64() / f64::from(pairs),
+            ));
+        }
+        runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        Paired {
+            ratios: runs.iter().map(|r| r.0).collect(),
+            plain: runs[2].1,
+            rules: runs[2].2,
+        }
+    }
+}
+
+/// What five paired runs gave.
+struct Paired {
+    /// Sorted.
+    ratios: Vec<f64>,
+    /// Seconds per step in the median run.
+    plain: f64,
+    rules: f64,
+}
+
+type Maker = Box<dyn Fn(bool) -> Scene>;
+
+/// Every variant: a name, a world size, and how to make its twins.
+fn variants() -> Vec<(String, usize, Maker)> {
+    let mut all: Vec<(String, usize, Maker)> = Vec::new();
+    for n in SIZES {
+        all.push(("level/none".into(), n, Box::new(move |_| level(n, false))));
+        all.push(("level/rules".into(), n, Box::new(move |r| level(n, r))));
+        all.push(("field/none".into(), n, Box::new(move |_| field(n))));
+    }
+    all.push(("floor/one-rule".into(), 2_001, Box::new(|r| floor(!r))));
+    all.push((
+        "pile-asleep/none".into(),
+        1_000,
+        Box::new(|_| sleeping_pile(false)),
+    ));
+    all.push((
+        "pile-asleep/specific".into(),
+        1_000,
+        Box::new(sleeping_pile),
+    ));
+    all
+}
+
+fn selected(name: &str) -> bool {
+    // WORLDS_VARIANTS=level,floor limits the runs to those scenes.
+    std::env::var("WORLDS_VARIANTS").map_or(true, |v| v.split(',').any(|x| name.starts_with(x)))
+}
+
+fn worlds(c: &mut Criterion) {
+    let mut group = c.benchmark_group("worlds");
+    group
+        .sample_size(20)
+        .measurement_time(Duration::from_secs(3))
+        .warm_up_time(Duration::from_secs(1));
+    for (name, n, make) in variants() {
+        if !selected(&name) {
+            continue;
+        }
+        let mut twins = Twins::new(&*make);
+        for (side, rules) in [("plain", false), ("rules", true)] {
+            let id = BenchmarkId::new(format!("{name}/{side}"), n);
+            group.bench_function(id, |b| b.iter_custom(|iters| twins.time(iters, rules)));
+        }
+    }
+    group.finish();
+}
+
+fn paired() -> Result<(), Box<dyn std::error::Error>> {
+    println!("paired runs (rules / plain: median [min, max] of 5; us per step in the median run):");
+    let mut csv = String::from("scene,size,plain_us,rules_us,ratio_median,ratio_min,ratio_max\n");
+    let mut rows = Vec::new();
+    for (name, n, make) in variants() {
+        if !selected(&name) {
+            continue;
+        }
+        let mut twins = Twins::new(&*make);
+        let p = twins.paired();
+        let stats = twins.hooks.stats();
+        println!(
+            "  {name:<22} {n:>6}: {:.3} [{:.3}, {:.3}]  plain {:>9.1} us  rules {:>9.1} us  extra {:>7.2} us  (hooked {}, watched {}, planned {}, tracked pairs {})",
+            p.ratios[2],
+            p.ratios[0],
+            p.ratios[4],
+            p.plain * 1e6,
+            p.rules * 1e6,
+            (p.rules - p.plain) * 1e6,
+            stats.hooked_colliders,
+            stats.watched_colliders,
+            stats.planned_colliders,
+            stats.tracked_pairs,
+        );
+        writeln!(
+            csv,
+            "{name},{n},{:.2},{:.2},{:.4},{:.4},{:.4}",
+            p.plain * 1e6,
+            p.rules * 1e6,
+            p.ratios[2],
+            p.ratios[0],
+            p.ratios[4]
+        )?;
+        rows.push((name, n, p));
+    }
+    if let Ok(out) = std::env::var("WORLDS_OUT") {
+        let dir = std::path::Path::new(&out);
+        std::fs::write(dir.join("upkeep.csv"), &csv)?;
+        chart(&dir.join("upkeep.svg"), &rows)?;
+        println!("wrote upkeep.csv and upkeep.svg in {out}");
+    }
+    Ok(())
+}
+
+/// Step time against world size: plain Rapier and `RuleHooks`, on the idle
+/// level and the asleep field (log-log).
+fn chart(
+    path: &std::path::Path,
+    rows: &[(String, usize, Paired)],
+) -> Result<(), Box<dyn std::error::Error>> {
+    let root = SVGBackend::new(path, (760, 460)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "Step time against world size: plain Rapier and RuleHooks",
+            ("sans-serif", 18),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(
+            (500f64..100_000f64).log_scale(),
+            (0.3f64..3_000f64).log_scale(),
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc("world size (level tiles, field boxes)")
+        .y_desc("time per step (us)")
+        .draw()?;
+    let series = [
+        ("level/none", false, "level, plain Rapier", BLUE),
+        ("level/none", true, "level, RuleHooks (no rules)", RED),
+        ("level/rules", true, "level, RuleHooks (20 rules)", MAGENTA),
+        ("field/none", false, "asleep field, plain Rapier", GREEN),
+        ("field/none", true, "asleep field, RuleHooks", BLACK),
+    ];
+    for (scene, with_rules, label, color) in series {
+        let points: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|(name, _, _)| name == scene)
+            .map(|(_, n, p)| (*n as f64, if with_rules { p.rules } else { p.plain } * 1e6))
+            .collect();
+        if points.is_empty() {
+            continue;
+        }
+        chart
+            .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color));
+        chart.draw_series(
+            points
+                .into_iter()
+                .map(|p| Circle::new(p, 3, color.filled())),
+        )?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+criterion_group!(benches, worlds);
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    if std::env::var_os("WORLDS_PAIRED_ONLY").is_none() {
+        benches();
+    }
+    if std::env::var_os("WORLDS_CRITERION_ONLY").is_none() {
+        paired()?;
+    }
+    Criterion::default().configure_from_args().final_summary();
+    Ok(())
+}

@@ -304,7 +304,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         for (actor, s) in actors.iter().zip(&mut seen) {
             let (a, b) = actor.pair;
-            s.live = s.live.or(hooks.pair_rule(a, b));
+            s.live = s.live.or(hooks.pair_rule_in(&world, a, b));
             s.touched |= world
                 .narrow_phase
                 .contact_pair(a, b)
@@ -318,7 +318,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let limb_ys: Vec<f32> = h.limbs.iter().map(|&b| pos(b).y).collect();
     let limb_pairs = (0..3).flat_map(|i| (i + 1..3).map(move |j| (i, j)));
     let limbs_apart = limb_pairs
-        .map(|(i, j)| hooks.pair_rule(actors[0].colliders[i], actors[0].colliders[j]))
+        .map(|(i, j)| hooks.pair_rule_in(&world, actors[0].colliders[i], actors[0].colliders[j]))
         .all(|rule| rule.is_none());
     let free_bullet = start.2 + 200.0 * t;
     let outcomes: Vec<(String, bool)> = vec![
@@ -329,7 +329,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ),
             limbs_apart
                 && limb_ys.iter().all(|y| (y - 0.25).abs() < 0.05)
-                && hooks.pair_rule(actors[0].colliders[2], floor).is_some(),
+                && hooks
+                    .pair_rule_in(&world, actors[0].colliders[2], floor)
+                    .is_some(),
         ),
         (
             format!(
@@ -450,7 +452,7 @@ fn snapshot(world: &PhysicsWorld, hooks: &RuleHooks, actors: &[Actor]) -> Vec<Sh
         let rule = hooks.rules().resolve(&world.bodies, &world.colliders, a, b);
         // NoPair pairs are never live: their colour shows all the time.
         let shown = hooks
-            .pair_rule(a, b)
+            .pair_rule_in(world, a, b)
             .or((rule == CollisionRule::NoPair).then_some(rule));
         for &c in &actor.colliders {
             colors.insert(c, color(shown));

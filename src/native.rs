@@ -102,18 +102,6 @@ impl ColliderPlan {
     }
 }
 
-/// The rule between two native classes.
-pub(crate) fn class_rule(rules: &CollisionRuleSet, a: Class, b: Class) -> CollisionRule {
-    let mut rule = rules.group_rule(a.group, b.group);
-    if !rule.is_decided() {
-        rule = rules.default_rule();
-    }
-    if rule == CollisionRule::Normal && !a.dynamic && !b.dynamic {
-        rule = CollisionRule::NoResponse;
-    }
-    rule
-}
-
 /// The plan of the colliders the rules reach (or of every collider, in a
 /// full pass). A collider without an entry keeps Rapier's defaults.
 #[derive(Debug, Default)]

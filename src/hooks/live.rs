@@ -1,20 +1,20 @@
 //! The live-pair API (`docs/semantics.md`, "Live pairs"): each pair's
 //! rule, overrides, manifold settings and forced recalculation.
 //!
-//! Rapier holds every pair; the hooks keep state only for the pairs the
-//! rules reach, so that a world they do not reach costs nothing. The
+//! Rapier holds every pair; the hooks keep state only for the pairs they
+//! decide (hooked pairs), so that the parts of a world the rules do not
+//! reach cost nothing and nothing copies Rapier's pair list per step. The
 //! methods without a world ([`RuleHooks::pair_rule`], [`RuleHooks::pairs`])
-//! answer from that state: hooked pairs, and the pairs of the colliders the
-//! planner configures (groups, collision types). The `*_in` methods take
-//! the world and answer for every pair Rapier holds, on demand.
+//! answer the hooked pairs; the `*_in` methods take the world and answer
+//! every pair Rapier holds, on demand: the hooked ones from the hooks, the
+//! others from Rapier's graph and the rules.
 
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::PoisonError;
 
 use rapier3d::prelude::*;
 
 use super::RuleHooks;
-use super::upkeep::{pair_exists, partners_of, same_body};
-use crate::native::{self, Class};
+use super::upkeep::{pair_exists, same_body};
 use crate::pairs::{ManifoldUpdate, PairKey, PairState};
 use crate::{CollisionRule, Node};
 
@@ -49,68 +49,29 @@ impl<'a> From<&'a PhysicsWorld> for WorldRef<'a> {
     }
 }
 
-/// Whether the list is sorted, and each noted pair with its colliders' classes.
-type Noted = (bool, Vec<(PairKey, Class, Class)>);
-
-/// The pairs of the native colliders the rules reach, noted after each
-/// step with the classes of their two colliders: what `pair_rule` and
-/// `pairs` answer from for pairs without a hooked collider. Sorted on the
-/// first query after a step (queries are rare, steps are not).
-#[derive(Debug, Default)]
-pub(crate) struct Notes {
-    pairs: Mutex<Noted>,
-    /// One bit per collider slot: set for the noted colliders.
-    bits: Vec<u64>,
-}
-
-impl Notes {
-    fn sorted(&self) -> MutexGuard<'_, Noted> {
-        let mut pairs = self.pairs.lock().unwrap_or_else(PoisonError::into_inner);
-        if !pairs.0 {
-            pairs.1.sort_unstable_by_key(|(k, _, _)| key_order(*k));
-            pairs.0 = true;
-        }
-        pairs
-    }
-
-    fn noted(&self, c: ColliderHandle) -> bool {
-        bit(&self.bits, c)
-    }
-}
-
-/// Whether the bit of `c`'s slot is set.
-fn bit(bits: &[u64], c: ColliderHandle) -> bool {
-    let index = c.into_raw_parts().0 as usize;
-    bits.get(index / 64)
-        .is_some_and(|w| w >> (index % 64) & 1 == 1)
-}
-
-fn key_order(key: PairKey) -> ((u32, u32), (u32, u32)) {
-    let (a, b) = key.colliders();
-    (a.into_raw_parts(), b.into_raw_parts())
-}
-
 /// Live pairs.
 impl RuleHooks {
-    /// The rule of the live pair of `a` and `b`, in either order, as of the
-    /// last step; `None` if the hooks know of no live pair (a `NoPair` pair
-    /// is not live). The hooks know every pair of a collider the rules reach
-    /// (it or a node of its chain carries rules, is named by one, or is in
-    /// the parent map). For a pair of two colliders no rule reaches, ask
-    /// [`pair_rule_in`](Self::pair_rule_in).
+    /// The rule of the hooked pair of `a` and `b`, in either order, as of
+    /// the last step; `None` if they form no hooked live pair (a `NoPair`
+    /// pair is not live). Hooked pairs are those a per-pair decision reaches
+    /// (a personal or specific rule, an override, a calculator: see
+    /// `docs/semantics.md`); every other pair is decided by Rapier's own
+    /// groups and is answered by [`pair_rule_in`](Self::pair_rule_in), which
+    /// takes the world.
     #[must_use]
     pub fn pair_rule(&self, a: ColliderHandle, b: ColliderHandle) -> Option<CollisionRule> {
         let key = PairKey::new(a, b);
-        match self.pairs.get(key) {
-            Some(state) => (!state.absent).then(|| state.rule()),
-            None => self.noted_rule(a, b),
-        }
-        .filter(|&rule| rule != CollisionRule::NoPair)
+        self.pairs
+            .get(key)
+            .filter(|state| !state.absent)
+            .map(PairState::rule)
+            .filter(|&rule| rule != CollisionRule::NoPair)
     }
 
-    /// The rule of the pair of `a` and `b` if Rapier holds it now, for any
-    /// pair: answered on demand from Rapier's narrow phase (the cost of a
-    /// look-up in Rapier's graph, nothing per step).
+    /// The rule of the live pair of `a` and `b`, in either order, for any
+    /// pair Rapier holds now; `None` if they form no live pair. Answered on
+    /// demand: a look-up in Rapier's graph (the pairs of `a`) and, for a pair
+    /// the hooks do not decide, the default calculation. Nothing per step.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -143,8 +104,9 @@ impl RuleHooks {
         .filter(|&rule| rule != CollisionRule::NoPair)
     }
 
-    /// Every live pair the hooks know (see [`pair_rule`](Self::pair_rule)),
-    /// with its rule, in no particular order.
+    /// Every hooked live pair (see [`pair_rule`](Self::pair_rule)), with its
+    /// rule, in no particular order; [`pairs_in`](Self::pairs_in) lists
+    /// every live pair.
     pub fn pairs(
         &self,
     ) -> impl Iterator<Item = (ColliderHandle, ColliderHandle, CollisionRule)> + '_ {
@@ -153,21 +115,13 @@ impl RuleHooks {
             .iter()
             .filter(|(_, state)| !state.absent)
             .map(|(key, state)| (key.colliders(), state.rule()));
-        let noted: Vec<_> = self
-            .notes
-            .sorted()
-            .1
-            .iter()
-            .map(|&(key, x, y)| (key.colliders(), native::class_rule(&self.rules, x, y)))
-            .collect();
         hooked
-            .chain(noted)
             .filter(|&(_, rule)| rule != CollisionRule::NoPair)
             .map(|((a, b), rule)| (a, b, rule))
     }
 
-    /// Every pair Rapier holds now, with its rule, in no particular order:
-    /// on demand, a walk of Rapier's pair lists.
+    /// Every live pair Rapier holds now, with its rule, in no particular
+    /// order: on demand, a walk of Rapier's pair lists.
     pub fn pairs_in<'a, W: Into<WorldRef<'a>>>(
         &'a self,
         world: W,
@@ -198,20 +152,20 @@ impl RuleHooks {
     /// pair's life (automatic recalculation leaves it alone;
     /// [`force_recalculation`](Self::force_recalculation) drops it). `Defer`
     /// drops the override. `NoPair` ends the pair for the crate. Returns
-    /// `false`, changing nothing, if the hooks know of no live pair of `a`
-    /// and `b` (see [`pair_rule`](Self::pair_rule);
-    /// [`set_pair_rule_in`](Self::set_pair_rule_in) reaches every pair).
+    /// `false`, changing nothing, if `a` and `b` form no hooked live pair
+    /// (see [`pair_rule`](Self::pair_rule));
+    /// [`set_pair_rule_in`](Self::set_pair_rule_in) reaches every pair.
     pub fn set_pair_rule(
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
         rule: CollisionRule,
     ) -> bool {
-        let known = self.noted_rule(a, b);
-        self.override_pair(a, b, known, rule)
+        self.override_pair(a, b, None, rule)
     }
 
-    /// [`set_pair_rule`](Self::set_pair_rule) for any pair Rapier holds now.
+    /// [`set_pair_rule`](Self::set_pair_rule) for any live pair Rapier holds
+    /// now: a pair Rapier decided alone is hooked from the next step on.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -257,19 +211,18 @@ impl RuleHooks {
         true
     }
 
-    /// Sets how the live pair of `a` and `b` updates its contacts. Returns
-    /// `false`, changing nothing, if the hooks know of no live pair of `a`
-    /// and `b` (see [`pair_rule`](Self::pair_rule);
+    /// Sets how the hooked live pair of `a` and `b` updates its contacts.
+    /// Returns `false`, changing nothing, if they form no hooked live pair
+    /// (see [`pair_rule`](Self::pair_rule));
     /// [`set_manifold_update_in`](Self::set_manifold_update_in) reaches
-    /// every pair).
+    /// every pair.
     pub fn set_manifold_update(
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
         update: ManifoldUpdate,
     ) -> bool {
-        let known = self.noted_rule(a, b);
-        self.manifold_pair(a, b, known, update)
+        self.manifold_pair(a, b, None, update)
     }
 
     /// [`set_manifold_update`](Self::set_manifold_update) for any pair
@@ -305,8 +258,8 @@ impl RuleHooks {
         true
     }
 
-    /// The manifold setting of the live pair of `a` and `b`, if the hooks
-    /// know of it (see [`pair_rule`](Self::pair_rule)).
+    /// The manifold setting of the hooked live pair of `a` and `b` (see
+    /// [`pair_rule`](Self::pair_rule)).
     #[must_use]
     pub fn manifold_update(&self, a: ColliderHandle, b: ColliderHandle) -> Option<ManifoldUpdate> {
         match self.pairs.get(PairKey::new(a, b)) {
@@ -322,23 +275,6 @@ impl RuleHooks {
     /// dropping their overrides. A pair that becomes `NoPair` stops being live.
     pub fn force_recalculation(&mut self, node: impl Into<Node>) {
         self.forced.push(node.into());
-    }
-
-    /// The rule of a pair the hooks noted after the last step between a
-    /// native collider the rules reach and its partner; `None` if no such
-    /// pair was noted.
-    fn noted_rule(&self, a: ColliderHandle, b: ColliderHandle) -> Option<CollisionRule> {
-        if !self.notes.noted(a) && !self.notes.noted(b) {
-            return None;
-        }
-        let key = PairKey::new(a, b);
-        let notes = self.notes.sorted();
-        let at = notes
-            .1
-            .binary_search_by_key(&key_order(key), |(k, _, _)| key_order(*k))
-            .ok()?;
-        let (_, x, y) = notes.1[at];
-        Some(native::class_rule(&self.rules, x, y))
     }
 
     /// The rule of a pair Rapier holds now, decided natively (not hooked);
@@ -377,91 +313,5 @@ impl RuleHooks {
     /// Wakes, before the next step, the bodies of `a` and `b`.
     pub(super) fn wake_pair(&mut self, a: ColliderHandle, b: ColliderHandle) {
         self.wake_colliders.extend([a, b]);
-    }
-
-    /// Notes the pairs of every native collider the rules reach, after
-    /// each step: a resting collider's pairs change when an awake partner
-    /// the rules do not reach moves, which nothing else tells. Walking one
-    /// collider's pairs in Rapier's graph costs about as much as reading 64
-    /// entries of Rapier's pair list in order, so with many noted colliders
-    /// the list is read once instead.
-    pub(super) fn note_pairs(
-        &mut self,
-        narrow_phase: &NarrowPhase,
-        bodies: &RigidBodySet,
-        colliders: &ColliderSet,
-    ) {
-        let Notes { pairs, bits } = &mut self.notes;
-        let pairs = pairs.get_mut().unwrap_or_else(PoisonError::into_inner);
-        pairs.0 = false;
-        pairs.1.clear();
-        bits.iter_mut().for_each(|w| *w = 0);
-        let plan = &self.plan;
-        // A hooked collider's pairs are in the table.
-        let class_of = |c: ColliderHandle| match plan.colliders.get(c) {
-            Some(entry) => entry.class,
-            None => {
-                let dynamic = colliders
-                    .get(c)
-                    .and_then(|o| o.parent())
-                    .and_then(|b| bodies.get(b))
-                    .is_some_and(|b| b.is_dynamic());
-                Some(Class::unreached(dynamic))
-            }
-        };
-        let mut noted = 0;
-        for &c in self.roster.colliders() {
-            if colliders.contains(c) && plan.colliders.get(c).is_some_and(|p| !p.hooked()) {
-                let index = c.into_raw_parts().0 as usize;
-                if index / 64 >= bits.len() {
-                    bits.resize(index / 64 + 1, 0);
-                }
-                bits[index / 64] |= 1 << (index % 64);
-                noted += 1;
-            }
-        }
-        if noted == 0 {
-            return;
-        }
-        let bits: &[u64] = bits;
-        let mut note = |a: ColliderHandle, b: ColliderHandle| {
-            if same_body(colliders, a, b) {
-                return;
-            }
-            if let (Some(x), Some(y)) = (class_of(a), class_of(b)) {
-                let key = PairKey::new(a, b);
-                let (x, y) = if key.colliders().0 == a {
-                    (x, y)
-                } else {
-                    (y, x)
-                };
-                pairs.1.push((key, x, y));
-            }
-        };
-        let listed = narrow_phase.contact_pairs().size_hint().0
-            + narrow_phase.intersection_pairs().size_hint().0;
-        if noted * 64 < listed {
-            for &c in self.roster.colliders() {
-                if !bit(bits, c) {
-                    continue;
-                }
-                for other in partners_of(narrow_phase, c) {
-                    // A pair of two noted colliders is noted from its first side.
-                    if !bit(bits, other) || PairKey::new(c, other).colliders().0 == c {
-                        note(c, other);
-                    }
-                }
-            }
-        } else {
-            let contacts = narrow_phase
-                .contact_pairs()
-                .map(|p| (p.collider1, p.collider2));
-            let sensors = narrow_phase.intersection_pairs().map(|(a, b, _)| (a, b));
-            for (a, b) in contacts.chain(sensors) {
-                if bit(bits, a) || bit(bits, b) {
-                    note(a, b);
-                }
-            }
-        }
     }
 }

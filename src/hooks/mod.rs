@@ -140,9 +140,6 @@ pub struct RuleHooks {
     touched: Vec<ColliderHandle>,
     /// The colliders and bodies the hooks watch.
     roster: Roster,
-    /// The pairs of the native colliders the rules reach, as of the last
-    /// step (see `live.rs`).
-    notes: live::Notes,
     stats: StepStats,
     /// How many colliders the last plan hooked.
     hooked: usize,
@@ -191,7 +188,6 @@ impl RuleHooks {
             regrouped: HashSet::new(),
             touched: Vec::new(),
             roster: Roster::default(),
-            notes: live::Notes::default(),
             stats: StepStats::default(),
             hooked: 0,
             exhaustive: false,

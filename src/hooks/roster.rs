@@ -18,14 +18,23 @@ struct Known {
     dynamic: bool,
 }
 
+/// What the hooks remember of a watched body.
+#[derive(Clone, Copy, Debug)]
+struct KnownBody {
+    dynamic: bool,
+    /// How many colliders it had: a collider added to it changes the count
+    /// (one removed is itself watched, and seen removed).
+    colliders: usize,
+}
+
 /// The watched colliders and bodies, each in a dense slot-indexed table and
 /// a compact list (so that a look walks only them).
 #[derive(Debug, Default)]
 pub(crate) struct Roster {
     colliders: HandleMap<ColliderHandle, Known>,
     collider_list: Vec<ColliderHandle>,
-    /// Whether each watched body was dynamic at the last look.
-    bodies: HandleMap<RigidBodyHandle, bool>,
+    /// Each watched body as of the last look.
+    bodies: HandleMap<RigidBodyHandle, KnownBody>,
     body_list: Vec<RigidBodyHandle>,
 }
 
@@ -99,8 +108,12 @@ impl Roster {
             self.body_list.push(body);
             return false;
         }
-        self.bodies
-            .insert_evicting(body, dynamic(bodies, Some(body)));
+        // A count no body has: the first look lists its colliders.
+        let known = KnownBody {
+            dynamic: dynamic(bodies, Some(body)),
+            colliders: usize::MAX,
+        };
+        self.bodies.insert_evicting(body, known);
         self.body_list.push(body);
         true
     }
@@ -135,13 +148,16 @@ impl Roster {
                 look.removed_bodies.push(handle);
                 return false;
             };
-            if *was != body.is_dynamic() {
-                *was = body.is_dynamic();
+            if was.dynamic != body.is_dynamic() {
+                was.dynamic = body.is_dynamic();
                 look.changed.push(Node::Body(handle));
             }
-            for &collider in body.colliders() {
-                if self.colliders.get(collider).is_none() {
-                    look.added.push(collider);
+            if was.colliders != body.colliders().len() {
+                was.colliders = body.colliders().len();
+                for &collider in body.colliders() {
+                    if self.colliders.get(collider).is_none() {
+                        look.added.push(collider);
+                    }
                 }
             }
             if keep(Node::Body(handle)) {
@@ -157,12 +173,16 @@ impl Roster {
             self.watch_collider(bodies, colliders, collider);
         }
 
+        // Bodies that lost a watched collider: a collider may have come in
+        // its place, leaving the count as it was.
+        let mut recheck = Vec::new();
         let mut list = std::mem::take(&mut self.collider_list);
         list.retain(|&handle| {
             let Some(collider) = colliders.get(handle) else {
                 let known = self.colliders.remove(handle);
-                look.removed_colliders
-                    .push((handle, known.and_then(|k| k.body)));
+                let body = known.and_then(|k| k.body);
+                recheck.extend(body);
+                look.removed_colliders.push((handle, body));
                 return false;
             };
             let Some(known) = self.colliders.get_mut(handle) else {
@@ -172,6 +192,7 @@ impl Roster {
             let body = collider.parent();
             let is_dynamic = dynamic(bodies, body);
             if known.body != body {
+                recheck.extend(known.body);
                 look.changed.push(Node::Collider(handle));
             } else if known.dynamic != is_dynamic {
                 look.changed.extend(body.map(Node::Body));
@@ -187,6 +208,18 @@ impl Roster {
             }
         });
         self.collider_list = list;
+        for handle in recheck {
+            let (Some(body), Some(known)) = (bodies.get(handle), self.bodies.get_mut(handle))
+            else {
+                continue;
+            };
+            known.colliders = body.colliders().len();
+            for &collider in body.colliders() {
+                if self.watch_collider(bodies, colliders, collider) {
+                    look.added.push(collider);
+                }
+            }
+        }
         look
     }
 }

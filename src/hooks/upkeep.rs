@@ -245,10 +245,9 @@ impl RuleHooks {
     }
 
     /// After a bare `PhysicsPipeline::step`: admits the pairs the hook met
-    /// during the step, forgets hooked pairs Rapier no longer has, gives a
-    /// rule to pairs of newly hooked colliders that Rapier made without
-    /// asking the hook (pairs of resting bodies), and notes the pairs of the
-    /// native colliders the plan configures.
+    /// during the step, forgets hooked pairs Rapier no longer has, and gives
+    /// a rule to pairs of newly hooked colliders that Rapier made without
+    /// asking the hook (pairs of resting bodies).
     pub fn after_step(
         &mut self,
         narrow_phase: &NarrowPhase,
@@ -274,8 +273,7 @@ impl RuleHooks {
             .unwrap_or_else(PoisonError::into_inner)
             .is_empty();
         let unchanged = pending_empty && self.touched.is_empty() && self.regrouped.is_empty();
-        let nothing = self.pairs.is_empty() && self.roster.collider_count() == 0;
-        if unchanged && !self.exhaustive && (quiet || nothing) {
+        if unchanged && !self.exhaustive && (quiet || self.pairs.is_empty()) {
             return;
         }
         self.stats.swept = true;
@@ -371,7 +369,6 @@ impl RuleHooks {
         self.touched.extend(regrouped);
         self.stats.hooked_pairs_answered = answered;
         self.stats.tracked_pairs = self.pairs.len();
-        self.note_pairs(narrow_phase, bodies, colliders);
     }
 
     /// Why every collider must be looked at and hooked, if it must.

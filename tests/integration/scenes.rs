@@ -306,7 +306,7 @@ fn two_kinematic_bodies_with_a_normal_group_rule_touch_without_pushing() {
         (xa - 0.5).abs() < 1e-4 && (xb - 1.0).abs() < 1e-4,
         "a platform was pushed: {xa} {xb}"
     );
-    assert_eq!(hooks.pair_rule(ca, cb), Some(NoResponse));
+    assert_eq!(hooks.pair_rule_in(&world, ca, cb), Some(NoResponse));
 }
 
 #[test]
@@ -327,7 +327,7 @@ fn kinematic_bodies_by_default_form_no_pair() {
         .contact_pair(ca, cb)
         .is_some_and(|p| p.has_any_active_contact());
     assert!(
-        !touching && hooks.pair_rule(ca, cb).is_none(),
+        !touching && hooks.pair_rule_in(&world, ca, cb).is_none(),
         "kinematic pair: touching {touching}"
     );
 }
@@ -670,9 +670,16 @@ fn a_ragdoll_ignores_itself_and_lands_on_the_world() -> Result<(), RuleError> {
         );
     }
     for (a, b) in [(p, t), (t, s), (p, s)] {
-        assert_eq!(hooks.pair_rule(a, b), None, "limbs formed a live pair");
+        assert_eq!(
+            hooks.pair_rule_in(&scene.world, a, b),
+            None,
+            "limbs formed a live pair"
+        );
     }
-    assert_eq!(hooks.pair_rule(s, scene.floor), Some(Normal));
+    assert_eq!(
+        hooks.pair_rule_in(&scene.world, s, scene.floor),
+        Some(Normal)
+    );
     Ok(())
 }
 
@@ -904,7 +911,7 @@ fn more_groups_than_bits_fall_back_to_the_hook_and_stay_exact() {
             i + 1
         );
         assert_eq!(
-            hooks.pair_rule(a, b).is_some(),
+            hooks.pair_rule_in(&world, a, b).is_some(),
             expected,
             "boxes {i} and {}",
             i + 1
@@ -931,13 +938,17 @@ fn a_colliderless_parent_changing_type_updates_its_descendants_pairs() -> Result
     rules.set_default_rule(Defer);
     let mut hooks = RuleHooks::new(rules);
     run_world(&mut world, &mut hooks, 1);
-    assert_eq!(hooks.pair_rule(c, deck), None, "a NoPair pair was live");
+    assert_eq!(
+        hooks.pair_rule_in(&world, c, deck),
+        None,
+        "a NoPair pair was live"
+    );
     world.bodies[frame].set_body_type(RigidBodyType::Dynamic, true);
     world.bodies[frame].set_gravity_scale(0.0, true);
     run_world(&mut world, &mut hooks, 60);
     let y = world.bodies[cube].translation().y;
     assert_eq!(
-        hooks.pair_rule(c, deck),
+        hooks.pair_rule_in(&world, c, deck),
         Some(Defer),
         "the pair did not follow the parent's type"
     );

@@ -17,7 +17,9 @@
 //!
 //! Each variant steps two identical worlds in lockstep, one plain, one with
 //! the rules, and times them back to back (the paired ratio: median, min
-//! and max of five runs). `WORLDS_OUT=docs` writes `upkeep.csv` and
+//! and max of five runs). `control` variants step both worlds plainly: the
+//! noise floor of the method, which for steps of a microsecond is several
+//! percent (the second world of a pair meets other cache contents). `WORLDS_OUT=docs` writes `upkeep.csv` and
 //! `upkeep.svg` there (step time against world size, level and field).
 //!
 //! `cargo bench --bench worlds` (criterion, then the paired ratios);
@@ -211,16 +213,19 @@ struct Twins {
     plain: PhysicsWorld,
     world: PhysicsWorld,
     hooks: RuleHooks,
+    /// The control: both worlds stepped plainly, the noise floor of the method.
+    control: bool,
 }
 
 impl Twins {
-    fn new(make: &dyn Fn(bool) -> Scene) -> Twins {
+    fn new(make: &dyn Fn(bool) -> Scene, control: bool) -> Twins {
         let plain = make(false).world;
         let Scene { world, rules } = make(true);
         let mut twins = Twins {
             plain,
             world,
             hooks: RuleHooks::new(rules),
+            control,
         };
         // The first step plans; what is measured is the steady state.
         twins.time(2, true);
@@ -233,7 +238,11 @@ impl Twins {
         let mut timed = Duration::ZERO;
         for _ in 0..iters {
             let start = Instant::now();
-            if rules {
+            if rules && self.control {
+                self.world.step();
+                timed += start.elapsed();
+                self.plain.step();
+            } else if rules {
                 self.hooks.step(&mut self.world);
                 timed += start.elapsed();
                 self.plain.step();
@@ -288,11 +297,23 @@ type Maker = Box<dyn Fn(bool) -> Scene>;
 fn variants() -> Vec<(String, usize, Maker)> {
     let mut all: Vec<(String, usize, Maker)> = Vec::new();
     for n in SIZES {
+        all.push((
+            "level/control".into(),
+            n,
+            Box::new(move |_| level(n, false)),
+        ));
         all.push(("level/none".into(), n, Box::new(move |_| level(n, false))));
         all.push(("level/rules".into(), n, Box::new(move |r| level(n, r))));
+        all.push(("field/control".into(), n, Box::new(move |_| field(n))));
         all.push(("field/none".into(), n, Box::new(move |_| field(n))));
     }
+    all.push(("floor/control".into(), 2_001, Box::new(|_| floor(true))));
     all.push(("floor/one-rule".into(), 2_001, Box::new(|r| floor(!r))));
+    all.push((
+        "pile-asleep/control".into(),
+        1_000,
+        Box::new(|_| sleeping_pile(false)),
+    ));
     all.push((
         "pile-asleep/none".into(),
         1_000,
@@ -321,7 +342,7 @@ fn worlds(c: &mut Criterion) {
         if !selected(&name) {
             continue;
         }
-        let mut twins = Twins::new(&*make);
+        let mut twins = Twins::new(&*make, name.ends_with("/control"));
         for (side, rules) in [("plain", false), ("rules", true)] {
             let id = BenchmarkId::new(format!("{name}/{side}"), n);
             group.bench_function(id, |b| b.iter_custom(|iters| twins.time(iters, rules)));
@@ -338,7 +359,7 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
         if !selected(&name) {
             continue;
         }
-        let mut twins = Twins::new(&*make);
+        let mut twins = Twins::new(&*make, name.ends_with("/control"));
         let p = twins.paired();
         let stats = twins.hooks.stats();
         println!(

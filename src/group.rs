@@ -1,4 +1,4 @@
-//! Collision groups and the group table with its set helpers (seed 2.B).
+//! Collision groups and the group table with its set helpers.
 
 use hashbrown::HashMap;
 
@@ -58,7 +58,7 @@ impl Default for GroupTable {
             entries: HashMap::new(),
             next_id: 2,
         };
-        // seed 2.B: kinematic objects do not collide with each other by default.
+        // The built-in entry: kinematic objects do not collide with each other by default.
         table.set(
             CollisionGroup::DEFAULT_KINEMATIC,
             CollisionGroup::DEFAULT_KINEMATIC,

@@ -1,4 +1,4 @@
-//! The parent map between rigid bodies, chains, and the cycle check (seed 3.C).
+//! The parent map between rigid bodies, chains, and the cycle check.
 
 use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 

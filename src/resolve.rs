@@ -1,5 +1,5 @@
-//! The default calculation (SPEC section 3, seed 2.C and 3.C.b) and the
-//! special cases of section 5, stage by stage in the specification's order.
+//! The default calculation and its special case, stage by stage in the
+//! order of `docs/semantics.md`, section 2.
 
 use rapier3d::prelude::{ColliderHandle, ColliderSet, RigidBodySet};
 use smallvec::SmallVec;
@@ -55,7 +55,7 @@ pub struct Explanation {
     /// The two nodes whose comparison decided, the first from the first
     /// collider's chain; `None` for `Default`.
     pub nodes: Option<(Node, Node)>,
-    /// The rule the stage gave before the special case of section 5 (two
+    /// The rule the stage gave before the special case of `docs/semantics.md` (two
     /// non-dynamic colliders with `Normal` get `NoResponse`).
     pub decided: CollisionRule,
 }
@@ -65,7 +65,7 @@ pub struct Explanation {
 struct Link<'a> {
     node: Node,
     record: Option<&'a Record>,
-    /// The node's effective group (SPEC section 2).
+    /// The node's effective group (`docs/semantics.md`, section 1).
     group: CollisionGroup,
 }
 
@@ -132,14 +132,14 @@ impl CollisionRuleSet {
         let a = self.chain(bodies, colliders, a);
         let b = self.chain(bodies, colliders, b);
         let mut explanation = self.calculate(&a, &b);
-        // Section 5: non-dynamic bodies cannot respond, whatever the rule says.
+        // The special case: non-dynamic bodies cannot respond, whatever the rule says.
         if !a.dynamic && !b.dynamic && explanation.rule == CollisionRule::Normal {
             explanation.rule = CollisionRule::NoResponse;
         }
         explanation
     }
 
-    /// The default calculation, steps 1 to 4 of SPEC section 3.
+    /// The default calculation, stages 1 to 4 of `docs/semantics.md`.
     fn calculate(&self, a: &Chain<'_>, b: &Chain<'_>) -> Explanation {
         let (a, a_flags) = (&a.links[..], (a.any_specific, a.any_personal));
         let (b, b_flags) = (&b.links[..], (b.any_specific, b.any_personal));
@@ -253,7 +253,7 @@ impl CollisionRuleSet {
         }
     }
 
-    /// The effective group of `node` (SPEC section 2): its own group, else
+    /// The effective group of `node` (`docs/semantics.md`): its own group, else
     /// the nearest explicit group up its chain, else the default group of
     /// the rigid body it belongs to.
     ///
@@ -293,7 +293,7 @@ impl CollisionRuleSet {
     }
 }
 
-/// Section 5 of the specification: two colliders neither of whose own
+/// The special case of `docs/semantics.md`: two colliders neither of whose own
 /// bodies is dynamic cannot respond, so `Normal` becomes `NoResponse`.
 pub(crate) fn special_case(
     bodies: &RigidBodySet,

@@ -9,7 +9,7 @@ use crate::hierarchy::Hierarchy;
 use crate::node::HandleMap;
 use crate::{CollisionGroup, CollisionRule, Node, RuleError};
 
-/// The rules one node carries (seed 2.A). Several nodes may share one record.
+/// The rules one node carries. Several nodes may share one record.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct Record {
     pub(crate) personal: CollisionRule,
@@ -209,7 +209,7 @@ impl Default for CollisionRuleSet {
     }
 }
 
-/// Groups (seed 2.B).
+/// Groups.
 impl CollisionRuleSet {
     /// A new group, distinct from every other group of this set.
     pub fn create_group(&mut self) -> CollisionGroup {
@@ -407,7 +407,7 @@ impl CollisionRuleSet {
     }
 }
 
-/// The rules of each node (seed 2.A) and their sharing (seed 3.A, 3.C.a).
+/// The rules of each node and their sharing.
 impl CollisionRuleSet {
     #[inline]
     pub(crate) fn record_id(&self, node: Node) -> Option<RecordId> {
@@ -640,7 +640,7 @@ impl CollisionRuleSet {
 
     /// From now on `to` uses `from`'s rule record: its group, personal rule
     /// and specific entries, and any later edit through either node is seen
-    /// by both (seed 3.A). `to`'s own rules are dropped.
+    /// by both. `to`'s own rules are dropped.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -740,7 +740,7 @@ impl CollisionRuleSet {
     }
 }
 
-/// The parent map (seed 3.C).
+/// The parent map.
 impl CollisionRuleSet {
     /// Makes `parent` the parent of `child` in the crate's parent map,
     /// replacing any earlier parent. A body as its own parent, or a parent
@@ -792,7 +792,7 @@ impl CollisionRuleSet {
     }
 }
 
-/// Forgetting removed objects (SPEC section 4).
+/// Forgetting removed objects (`docs/semantics.md`, section 4).
 impl CollisionRuleSet {
     /// Forgets a node that left the world: its rules (a shared record lives
     /// on for its other users), every specific entry about it, and for a body

@@ -273,7 +273,7 @@ impl RuleHooks {
     }
 
     /// Replaces the default calculation (specific, personal, group,
-    /// default) for every pair (seed 3.D). The calculator can run the
+    /// default) for every pair. The calculator can run the
     /// default calculation itself with [`CalculatorContext::default_rule`].
     /// The special case of two non-dynamic bodies still applies to its
     /// answer. Live pairs are recalculated with it before the next step

@@ -16,12 +16,16 @@ use crate::node::HandleMap;
 struct Known {
     body: Option<RigidBodyHandle>,
     dynamic: bool,
+    /// An edit touched it: the next look asks whether the rules still reach it.
+    marked: bool,
 }
 
 /// What the hooks remember of a watched body.
 #[derive(Clone, Copy, Debug)]
 struct KnownBody {
     dynamic: bool,
+    /// An edit touched it: the next look asks whether the rules still reach it.
+    marked: bool,
     /// How many colliders it had: a collider added to it changes the count
     /// (one removed is itself watched, and seen removed).
     colliders: usize,
@@ -91,6 +95,7 @@ impl Roster {
         let known = Known {
             body,
             dynamic: dynamic(bodies, body),
+            marked: false,
         };
         // A watched collider in a reused slot stays in the list: the next
         // look finds it removed.
@@ -111,6 +116,7 @@ impl Roster {
         // A count no body has: the first look lists its colliders.
         let known = KnownBody {
             dynamic: dynamic(bodies, Some(body)),
+            marked: false,
             colliders: usize::MAX,
         };
         self.bodies.insert_evicting(body, known);
@@ -118,14 +124,33 @@ impl Roster {
         true
     }
 
+    /// Marks a watched `node`: whether the rules still reach it is asked at
+    /// the next look (an edit touched it).
+    pub(crate) fn mark(&mut self, node: Node) {
+        match node {
+            Node::Collider(c) => {
+                if let Some(known) = self.colliders.get_mut(c) {
+                    known.marked = true;
+                }
+            }
+            Node::Body(b) => {
+                if let Some(known) = self.bodies.get_mut(b) {
+                    known.marked = true;
+                }
+            }
+        }
+    }
+
     /// Looks at every watched object. With `all`, also walks Rapier's whole
-    /// collider set for colliders not yet watched (a full pass). Objects
-    /// that `keep` no longer wants are let go (they are then unreached).
+    /// collider set for colliders not yet watched (a full pass). Marked
+    /// objects (every object with `ask_all`) that `keep` no longer wants are
+    /// let go: the rules no longer reach them.
     pub(crate) fn look(
         &mut self,
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
         all: bool,
+        ask_all: bool,
         keep: impl Fn(Node) -> bool,
     ) -> Look {
         let mut look = Look::default();
@@ -160,7 +185,7 @@ impl Roster {
                     }
                 }
             }
-            if keep(Node::Body(handle)) {
+            if !(std::mem::take(&mut was.marked) || ask_all) || keep(Node::Body(handle)) {
                 true
             } else {
                 self.bodies.remove(handle);
@@ -199,7 +224,8 @@ impl Roster {
             }
             known.body = body;
             known.dynamic = is_dynamic;
-            if all || keep(Node::Collider(handle)) {
+            let ask = std::mem::take(&mut known.marked) || ask_all;
+            if all || !ask || keep(Node::Collider(handle)) {
                 true
             } else {
                 self.colliders.remove(handle);

@@ -126,14 +126,15 @@ impl RuleHooks {
 
         // 2. Look at what is watched: removals, changes, additions.
         let everything = self.plan.full.is_some() || full.is_some() || self.exhaustive;
-        // Whether the rules still reach a watched object changes only with
-        // an edit (or a removal, which the next step's look prunes).
-        let prune = !changed.is_empty() || self.replan || !self.forced.is_empty();
+        // Whether the rules still reach a watched object changes only with an
+        // edit of it (marked by `watch`), or with a global one.
+        let ask_all = self.replan;
         let look = {
             let (rules, plan) = (&self.rules, &self.plan);
-            self.roster.look(bodies, colliders, everything, |node| {
-                !prune || reached(rules, plan, bodies, colliders, node)
-            })
+            self.roster
+                .look(bodies, colliders, everything, ask_all, |node| {
+                    reached(rules, plan, bodies, colliders, node)
+                })
         };
         self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
         for &c in &look.released {
@@ -405,10 +406,12 @@ impl RuleHooks {
         if let Node::Body(body) = node {
             self.roster.watch_body(bodies, body);
         }
+        self.roster.mark(node);
         for c in self.colliders_under(node, bodies, colliders) {
             if self.roster.watch_collider(bodies, colliders, c) {
                 self.candidates.push(c);
             }
+            self.roster.mark(Node::Collider(c));
         }
     }
 

@@ -1,5 +1,5 @@
 //! A naive model of the rule set and a reference resolver transcribed
-//! straight from SPEC sections 2-5, as slowly and plainly as possible: the
+//! straight from `docs/semantics.md`, as slowly and plainly as possible: the
 //! oracle the crate's resolver is compared against.
 
 use std::collections::HashMap;
@@ -183,7 +183,7 @@ impl Model {
 
     // ---- the reference resolver ----
 
-    /// SPEC 1: `[c, body(c), parent(body(c)), ...]`; handles missing from the
+    /// A chain: `[c, body(c), parent(body(c)), ...]`; handles missing from the
     /// sets end the chain.
     fn chain(
         &self,
@@ -217,7 +217,7 @@ impl Model {
             .is_some_and(|b| b.is_dynamic())
     }
 
-    /// SPEC 2: own group, else nearest explicit group up the chain, else the
+    /// The effective group: own group, else nearest explicit group up the chain, else the
     /// default group of the node's own body.
     fn effective_group(
         &self,

@@ -13,37 +13,14 @@
 //! - `hooked`: no rules but the planner off (every collider hooked), against
 //!   plain Rapier.
 
-use std::time::{Duration, Instant};
+mod common;
 
+use std::time::Duration;
+
+use common::{Twins, pile};
 use criterion::{BenchmarkId, Criterion, criterion_group};
 use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks};
 use rapier3d::prelude::*;
-
-/// A settled pile of `n` boxes, and each box's body and column.
-pub fn pile(n: usize) -> (PhysicsWorld, Vec<(RigidBodyHandle, usize)>) {
-    let mut world = PhysicsWorld::new();
-    let ground =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-    world.insert_collider(ColliderBuilder::cuboid(500.0, 0.5, 500.0), Some(ground));
-    let side = ((n / 10) as f32).sqrt().ceil() as usize;
-    let mut boxes = Vec::with_capacity(n);
-    for i in 0..n {
-        let column = i / 10;
-        let (x, z) = ((column % side) as f32 * 1.01, (column / side) as f32 * 1.01);
-        let y = 0.5 + (i % 10) as f32 * 1.001;
-        let body = world.insert_body(
-            RigidBodyBuilder::dynamic()
-                .translation(Vector::new(x, y, z))
-                .can_sleep(false),
-        );
-        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
-        boxes.push((body, column));
-    }
-    for _ in 0..60 {
-        world.step();
-    }
-    (world, boxes)
-}
 
 /// The four groups' table: A-B `NoPair`, C-D `NoResponse`, A-C `NoResponse`,
 /// B-D `NoPair`; each group with itself `Normal` (no entry).
@@ -109,53 +86,21 @@ pub fn variant_rules(variant: &str, boxes: &[(RigidBodyHandle, usize)]) -> Colli
     rules
 }
 
-/// A variant's two worlds, stepped in lockstep: each benchmark times one
-/// world's step and steps the other untimed, so that both stand at the same
-/// point of their (identical) evolution whenever either is measured.
-struct Twins {
-    plain: PhysicsWorld,
-    world: PhysicsWorld,
-    hooks: RuleHooks,
-    /// The control: both worlds plain, to show the measurement's own noise.
-    control: bool,
-}
-
-impl Twins {
-    fn new(variant: &str, n: usize) -> Twins {
-        let (mut plain, boxes) = pile(n);
-        if variant == "groups" {
-            hand_written_groups(&mut plain, &boxes);
-        }
-        let (world, boxes) = pile(n);
-        let mut hooks = RuleHooks::new(variant_rules(variant, &boxes));
-        hooks.set_planner(variant != "hooked");
-        Twins {
-            plain,
-            world,
-            hooks,
-            control: variant == "control",
-        }
+/// A variant's two worlds: the plain one with hand-written groups where the
+/// variant needs them.
+fn twins(variant: &str, n: usize) -> Twins {
+    let (mut plain, boxes) = pile(n, false);
+    if variant == "groups" {
+        hand_written_groups(&mut plain, &boxes);
     }
-
-    fn time(&mut self, iters: u64, rules: bool) -> Duration {
-        let mut timed = Duration::ZERO;
-        for _ in 0..iters {
-            let start = Instant::now();
-            if rules && self.control {
-                self.world.step();
-                timed += start.elapsed();
-                self.plain.step();
-            } else if rules {
-                self.hooks.step(&mut self.world);
-                timed += start.elapsed();
-                self.plain.step();
-            } else {
-                self.plain.step();
-                timed += start.elapsed();
-                self.hooks.step(&mut self.world);
-            }
-        }
-        timed
+    let (world, boxes) = pile(n, false);
+    let mut hooks = RuleHooks::new(variant_rules(variant, &boxes));
+    hooks.set_planner(variant != "hooked");
+    Twins {
+        plain,
+        world,
+        hooks,
+        control: variant == "control",
     }
 }
 
@@ -167,7 +112,7 @@ fn step(c: &mut Criterion) {
         .warm_up_time(Duration::from_secs(1));
     for n in [1000, 4000] {
         for variant in ["none", "groups", "specific", "hooked"] {
-            let mut twins = Twins::new(variant, n);
+            let mut twins = twins(variant, n);
             for (name, rules) in [("plain", false), ("rules", true)] {
                 let id = BenchmarkId::new(format!("{variant}/{name}"), n);
                 group.bench_function(id, |b| b.iter_custom(|iters| twins.time(iters, rules)));
@@ -183,7 +128,7 @@ fn step(c: &mut Criterion) {
 fn edit(c: &mut Criterion) {
     let mut group = c.benchmark_group("edit");
     for n in [1000, 4000] {
-        let (mut world, boxes) = pile(n);
+        let (mut world, boxes) = pile(n, false);
         let rules = variant_rules("groups", &boxes);
         let used = [rules.group(boxes[0].0), rules.group(boxes[10].0)].map(|g| g.expect("a group"));
         let mut hooks = RuleHooks::new(rules);
@@ -227,7 +172,7 @@ fn paired() {
             if std::env::var("STEP_VARIANTS").is_ok_and(|v| !v.split(',').any(|x| x == variant)) {
                 continue;
             }
-            let mut twins = Twins::new(variant, n);
+            let mut twins = twins(variant, n);
             let mut ratios: Vec<f64> = (0..3)
                 .map(|_| {
                     let (mut plain, mut rules) = (Duration::ZERO, Duration::ZERO);

@@ -25,9 +25,12 @@
 //! `cargo bench --bench worlds` (criterion, then the paired ratios);
 //! `WORLDS_PAIRED_ONLY=1` skips criterion.
 
-use std::fmt::Write as _;
-use std::time::{Duration, Instant};
+mod common;
 
+use std::fmt::Write as _;
+use std::time::Duration;
+
+use common::{Twins, pile};
 use criterion::{BenchmarkId, Criterion, criterion_group};
 use plotters::prelude::*;
 use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
@@ -179,20 +182,7 @@ fn floor(by_hand: bool) -> Scene {
 /// to sleep and settled until it does; `specific` puts rules on 5% of it.
 fn sleeping_pile(specific: bool) -> Scene {
     let n = 1_000;
-    let mut world = PhysicsWorld::new();
-    let ground =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-    world.insert_collider(ColliderBuilder::cuboid(500.0, 0.5, 500.0), Some(ground));
-    let side = ((n / 10) as f32).sqrt().ceil() as usize;
-    let mut boxes = Vec::with_capacity(n);
-    for i in 0..n {
-        let column = i / 10;
-        let (x, z) = ((column % side) as f32 * 1.01, (column / side) as f32 * 1.01);
-        let y = 0.5 + (i % 10) as f32 * 1.001;
-        let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(x, y, z)));
-        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
-        boxes.push(body);
-    }
+    let (mut world, boxes) = pile(n, true);
     settle(&mut world, 0, 3_000);
     let mut rules = CollisionRuleSet::default();
     if specific {
@@ -202,59 +192,33 @@ fn sleeping_pile(specific: bool) -> Scene {
             } else {
                 CollisionRule::NoContacts
             };
-            rules.set_specific(boxes[i], boxes[(i + n / 2) % n], rule);
+            rules.set_specific(boxes[i].0, boxes[(i + n / 2) % n].0, rule);
         }
     }
     Scene { world, rules }
 }
 
-/// Two identical worlds, one stepped plainly, one with the rules.
-struct Twins {
-    plain: PhysicsWorld,
-    world: PhysicsWorld,
-    hooks: RuleHooks,
-    /// The control: both worlds stepped plainly, the noise floor of the method.
-    control: bool,
+/// A scene's two worlds: plain, and with the scene's rules.
+fn twins(make: &dyn Fn(bool) -> Scene, control: bool) -> Twins {
+    let plain = make(false).world;
+    let Scene { world, rules } = make(true);
+    let mut twins = Twins {
+        plain,
+        world,
+        hooks: RuleHooks::new(rules),
+        control,
+    };
+    // The first step plans; what is measured is the steady state.
+    twins.time(2, true);
+    twins.time(2, false);
+    twins
 }
 
-impl Twins {
-    fn new(make: &dyn Fn(bool) -> Scene, control: bool) -> Twins {
-        let plain = make(false).world;
-        let Scene { world, rules } = make(true);
-        let mut twins = Twins {
-            plain,
-            world,
-            hooks: RuleHooks::new(rules),
-            control,
-        };
-        // The first step plans; what is measured is the steady state.
-        twins.time(2, true);
-        twins.time(2, false);
-        twins
-    }
+trait PairedRuns {
+    fn paired(&mut self) -> Paired;
+}
 
-    /// Times `iters` steps of one world, stepping the other untimed.
-    fn time(&mut self, iters: u64, rules: bool) -> Duration {
-        let mut timed = Duration::ZERO;
-        for _ in 0..iters {
-            let start = Instant::now();
-            if rules && self.control {
-                self.world.step();
-                timed += start.elapsed();
-                self.plain.step();
-            } else if rules {
-                self.hooks.step(&mut self.world);
-                timed += start.elapsed();
-                self.plain.step();
-            } else {
-                self.plain.step();
-                timed += start.elapsed();
-                self.hooks.step(&mut self.world);
-            }
-        }
-        timed
-    }
-
+impl PairedRuns for Twins {
     /// Five paired runs: each the ratio of the rules world's time to the
     /// plain one's over step pairs timed back to back, and the extra time
     /// per step. Each run lasts at least 0.3 s and 50 pairs.
@@ -342,7 +306,7 @@ fn worlds(c: &mut Criterion) {
         if !selected(&name) {
             continue;
         }
-        let mut twins = Twins::new(&*make, name.ends_with("/control"));
+        let mut twins = twins(&*make, name.ends_with("/control"));
         for (side, rules) in [("plain", false), ("rules", true)] {
             let id = BenchmarkId::new(format!("{name}/{side}"), n);
             group.bench_function(id, |b| b.iter_custom(|iters| twins.time(iters, rules)));
@@ -359,7 +323,7 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
         if !selected(&name) {
             continue;
         }
-        let mut twins = Twins::new(&*make, name.ends_with("/control"));
+        let mut twins = twins(&*make, name.ends_with("/control"));
         let p = twins.paired();
         let stats = twins.hooks.stats();
         println!(

@@ -243,22 +243,7 @@ fn carriers(
         colliders,
         ..
     } = *request;
-    let under = |node: Node| -> Vec<ColliderHandle> {
-        let mut below: Vec<ColliderHandle> = rules
-            .descendants(node, bodies, colliders)
-            .into_iter()
-            .filter_map(|n| match n {
-                Node::Collider(c) => Some(c),
-                Node::Body(_) => None,
-            })
-            .collect();
-        if let Node::Collider(c) = node {
-            if colliders.contains(c) {
-                below.push(c);
-            }
-        }
-        below
-    };
+    let under = |node: Node| rules.colliders_under(node, bodies, colliders);
     let mut sides: Vec<(Vec<ColliderHandle>, Vec<ColliderHandle>)> = Vec::new();
     for &node in request.ruled {
         let Some(record) = rules.record(node) else {

@@ -708,6 +708,30 @@ impl CollisionRuleSet {
         }
     }
 
+    /// `node` itself if it is a collider in the set, and every collider
+    /// below it: the colliders whose chains hold `node`.
+    pub(crate) fn colliders_under(
+        &self,
+        node: Node,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Vec<ColliderHandle> {
+        let mut below: Vec<ColliderHandle> = self
+            .descendants(node, bodies, colliders)
+            .into_iter()
+            .filter_map(|n| match n {
+                Node::Collider(c) => Some(c),
+                Node::Body(_) => None,
+            })
+            .collect();
+        if let Node::Collider(c) = node {
+            if colliders.contains(c) {
+                below.push(c);
+            }
+        }
+        below
+    }
+
     /// The nodes below `node`: for a body, its colliders and every body below
     /// it in the parent map with their colliders; a collider has none.
     #[must_use]

@@ -403,8 +403,16 @@ impl RuleHooks {
 
     /// Starts watching `node` and every collider under it.
     fn watch(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) {
-        if let Node::Body(body) = node {
-            self.roster.watch_body(bodies, body);
+        match node {
+            Node::Body(body) => {
+                self.roster.watch_body(bodies, body);
+            }
+            // Watched even if Rapier removed it: the look then forgets it.
+            Node::Collider(c) => {
+                if self.roster.watch_collider(bodies, colliders, c) {
+                    self.candidates.push(c);
+                }
+            }
         }
         self.roster.mark(node);
         for c in self.colliders_under(node, bodies, colliders) {
@@ -620,19 +628,7 @@ impl RuleHooks {
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
     ) -> Vec<ColliderHandle> {
-        let mut below: Vec<ColliderHandle> = self
-            .rules
-            .descendants(node, bodies, colliders)
-            .into_iter()
-            .filter_map(|n| match n {
-                Node::Collider(c) => Some(c),
-                Node::Body(_) => None,
-            })
-            .collect();
-        if let Node::Collider(c) = node {
-            below.push(c);
-        }
-        below
+        self.rules.colliders_under(node, bodies, colliders)
     }
 
     /// Recalculates the live pairs that are `everything`, or touch an

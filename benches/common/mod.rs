@@ -1,0 +1,71 @@
+//! What the step benchmarks share: the pile of boxes, and two worlds stepped
+//! in lockstep, one plainly and one with the rules, timed back to back.
+
+use std::time::{Duration, Instant};
+
+use rapier_collision_rules::RuleHooks;
+use rapier3d::prelude::*;
+
+/// A pile of `n` unit boxes standing in columns of ten, the columns side by
+/// side, on a ground slab, settled for 60 steps; each box's body and column.
+/// With `can_sleep` the boxes may fall asleep.
+pub fn pile(n: usize, can_sleep: bool) -> (PhysicsWorld, Vec<(RigidBodyHandle, usize)>) {
+    let mut world = PhysicsWorld::new();
+    let ground =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+    world.insert_collider(ColliderBuilder::cuboid(500.0, 0.5, 500.0), Some(ground));
+    let side = ((n / 10) as f32).sqrt().ceil() as usize;
+    let mut boxes = Vec::with_capacity(n);
+    for i in 0..n {
+        let column = i / 10;
+        let (x, z) = ((column % side) as f32 * 1.01, (column / side) as f32 * 1.01);
+        let y = 0.5 + (i % 10) as f32 * 1.001;
+        let body = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .translation(Vector::new(x, y, z))
+                .can_sleep(can_sleep),
+        );
+        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
+        boxes.push((body, column));
+    }
+    for _ in 0..60 {
+        world.step();
+    }
+    (world, boxes)
+}
+
+/// Two worlds stepped in lockstep: each measurement times one world's step
+/// and steps the other untimed, so that both stand at the same point of
+/// their (identical) evolution whenever either is measured.
+pub struct Twins {
+    pub plain: PhysicsWorld,
+    pub world: PhysicsWorld,
+    pub hooks: RuleHooks,
+    /// The control: both worlds stepped plainly, the noise floor of the method.
+    pub control: bool,
+}
+
+impl Twins {
+    /// Times `iters` steps of one world (`rules`: the one with the rules),
+    /// stepping the other untimed.
+    pub fn time(&mut self, iters: u64, rules: bool) -> Duration {
+        let mut timed = Duration::ZERO;
+        for _ in 0..iters {
+            let start = Instant::now();
+            if rules && self.control {
+                self.world.step();
+                timed += start.elapsed();
+                self.plain.step();
+            } else if rules {
+                self.hooks.step(&mut self.world);
+                timed += start.elapsed();
+                self.plain.step();
+            } else {
+                self.plain.step();
+                timed += start.elapsed();
+                self.hooks.step(&mut self.world);
+            }
+        }
+        timed
+    }
+}

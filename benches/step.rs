@@ -17,7 +17,7 @@ mod common;
 
 use std::time::Duration;
 
-use common::{Twins, pile};
+use common::{Twins, pile, specific_rules};
 use criterion::{BenchmarkId, Criterion, criterion_group};
 use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks};
 use rapier3d::prelude::*;
@@ -68,19 +68,7 @@ pub fn variant_rules(variant: &str, boxes: &[(RigidBodyHandle, usize)]) -> Colli
                 rules.set_group(body, Some(g[column % 4]));
             }
         }
-        "specific" => {
-            // One body in twenty says something about a body half the pile
-            // away, which it never meets: 5% of the bodies carry rules.
-            let n = boxes.len();
-            for i in (0..n).step_by(20) {
-                let rule = if i % 40 == 0 {
-                    CollisionRule::NoResponse
-                } else {
-                    CollisionRule::NoContacts
-                };
-                rules.set_specific(boxes[i].0, boxes[(i + n / 2) % n].0, rule);
-            }
-        }
+        "specific" => rules = specific_rules(boxes),
         _ => {}
     }
     rules

@@ -30,7 +30,7 @@ mod common;
 use std::fmt::Write as _;
 use std::time::Duration;
 
-use common::{Twins, pile};
+use common::{Twins, pile, specific_rules};
 use criterion::{BenchmarkId, Criterion, criterion_group};
 use plotters::prelude::*;
 use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
@@ -184,17 +184,11 @@ fn sleeping_pile(specific: bool) -> Scene {
     let n = 1_000;
     let (mut world, boxes) = pile(n, true);
     settle(&mut world, 0, 3_000);
-    let mut rules = CollisionRuleSet::default();
-    if specific {
-        for i in (0..n).step_by(20) {
-            let rule = if i % 40 == 0 {
-                CollisionRule::NoResponse
-            } else {
-                CollisionRule::NoContacts
-            };
-            rules.set_specific(boxes[i].0, boxes[(i + n / 2) % n].0, rule);
-        }
-    }
+    let rules = if specific {
+        specific_rules(&boxes)
+    } else {
+        CollisionRuleSet::default()
+    };
     Scene { world, rules }
 }
 

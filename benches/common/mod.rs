@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use rapier_collision_rules::RuleHooks;
+use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
 use rapier3d::prelude::*;
 
 /// A pile of `n` unit boxes standing in columns of ten, the columns side by
@@ -32,6 +32,23 @@ pub fn pile(n: usize, can_sleep: bool) -> (PhysicsWorld, Vec<(RigidBodyHandle, u
         world.step();
     }
     (world, boxes)
+}
+
+/// Specific rules on 5% of the pile's bodies: one body in twenty says
+/// something (`NoResponse` or `NoContacts`) about a body half the pile away,
+/// which it never meets.
+pub fn specific_rules(boxes: &[(RigidBodyHandle, usize)]) -> CollisionRuleSet {
+    let mut rules = CollisionRuleSet::default();
+    let n = boxes.len();
+    for i in (0..n).step_by(20) {
+        let rule = if i % 40 == 0 {
+            CollisionRule::NoResponse
+        } else {
+            CollisionRule::NoContacts
+        };
+        rules.set_specific(boxes[i].0, boxes[(i + n / 2) % n].0, rule);
+    }
+    rules
 }
 
 /// Two worlds stepped in lockstep: each measurement times one world's step

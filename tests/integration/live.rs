@@ -8,7 +8,7 @@
 //! every collider sees.
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
+use proptest::test_runner::{Config, RngSeed, TestCaseError};
 use rapier_collision_rules::CollisionRule;
 
 use crate::world::{Edit, GROUPS, KINDS, Run};
@@ -68,22 +68,11 @@ proptest! {
     ) {
         let mut on = Run::new(&cubes, true, true);
         let mut off = Run::new(&cubes, false, true);
-        for edit in edits.iter().chain([&Edit::Step(2)]) {
-            let steps = match edit {
-                Edit::Step(n) => *n,
-                other => {
-                    on.apply(other);
-                    off.apply(other);
-                    0
-                }
-            };
-            for _ in 0..steps {
-                on.step();
-                off.step();
-                prop_assert_eq!(on.live(), off.live(), "live pairs differ");
-                prop_assert_eq!(on.touching(), off.touching(), "touching pairs differ");
-            }
-        }
+        in_lockstep(&mut on, &mut off, &edits, |on, off| {
+            prop_assert_eq!(on.live(), off.live(), "live pairs differ");
+            prop_assert_eq!(on.touching(), off.touching(), "touching pairs differ");
+            Ok(())
+        })?;
         prop_assert!(off.hooks.hooked_count() >= on.hooks.hooked_count());
     }
 
@@ -95,23 +84,38 @@ proptest! {
         let mut upkeep = Run::new(&cubes, true, false);
         let mut oracle = Run::new(&cubes, true, false);
         oracle.hooks.set_exhaustive(true);
-        for edit in edits.iter().chain([&Edit::Step(2)]) {
-            let steps = match edit {
-                Edit::Step(n) => *n,
-                other => {
-                    upkeep.apply(other);
-                    oracle.apply(other);
-                    0
-                }
-            };
-            for _ in 0..steps {
-                upkeep.step();
-                oracle.step();
-                prop_assert_eq!(upkeep.live(), oracle.live(), "live pairs differ");
-                prop_assert_eq!(upkeep.touching(), oracle.touching(), "touching pairs differ");
-                prop_assert_eq!(upkeep.known(), oracle.known_among(&upkeep.known()), "known pairs differ");
-                prop_assert_eq!(upkeep.poses(), oracle.poses(), "the worlds moved apart");
+        in_lockstep(&mut upkeep, &mut oracle, &edits, |upkeep, oracle| {
+            prop_assert_eq!(upkeep.live(), oracle.live(), "live pairs differ");
+            prop_assert_eq!(upkeep.touching(), oracle.touching(), "touching pairs differ");
+            prop_assert_eq!(upkeep.known(), oracle.known_among(&upkeep.known()), "known pairs differ");
+            prop_assert_eq!(upkeep.poses(), oracle.poses(), "the worlds moved apart");
+            Ok(())
+        })?;
+    }
+}
+
+/// Applies `edits` (and two last steps) to both runs, and `compare`s them
+/// after every step.
+fn in_lockstep(
+    a: &mut Run,
+    b: &mut Run,
+    edits: &[Edit],
+    mut compare: impl FnMut(&Run, &Run) -> Result<(), TestCaseError>,
+) -> Result<(), TestCaseError> {
+    for edit in edits.iter().chain([&Edit::Step(2)]) {
+        let steps = match edit {
+            Edit::Step(n) => *n,
+            other => {
+                a.apply(other);
+                b.apply(other);
+                0
             }
+        };
+        for _ in 0..steps {
+            a.step();
+            b.step();
+            compare(a, b)?;
         }
     }
+    Ok(())
 }

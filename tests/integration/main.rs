@@ -6,6 +6,7 @@ mod driver;
 mod errors;
 mod live;
 mod properties;
+mod reach;
 mod reference;
 #[cfg(feature = "serde")]
 mod saving;

@@ -114,7 +114,9 @@ impl RuleHooks {
         // 1. What the edits touched starts being watched.
         let changes = self.rules.take_changes();
         let mut changed = match self.rules.touched_nodes(&changes) {
-            Some(nodes) if !self.exhaustive => nodes,
+            // The first step reads the whole rule set: it may have been
+            // built, or loaded, before the hooks existed.
+            Some(nodes) if !self.exhaustive && self.step > 1 => nodes,
             _ => {
                 self.replan = true;
                 self.rules.ruled_nodes()

@@ -195,6 +195,26 @@ impl RuleHooks {
         self.override_pair(a, b, known, rule)
     }
 
+    /// Edits the live pair of `a` and `b` (a pair the hooks do not track
+    /// yet, its rule `native`, gets an entry and is hooked from the next step
+    /// on), plans again and wakes its bodies; `false`, changing nothing, if
+    /// they form no live pair.
+    fn edit_pair(
+        &mut self,
+        a: ColliderHandle,
+        b: ColliderHandle,
+        native: Option<CollisionRule>,
+        edit: impl FnOnce(&mut PairState),
+    ) -> bool {
+        let Some(state) = self.live_state(a, b, native) else {
+            return false;
+        };
+        edit(state);
+        self.replan = true;
+        self.wake_pair(a, b);
+        true
+    }
+
     fn override_pair(
         &mut self,
         a: ColliderHandle,
@@ -202,13 +222,9 @@ impl RuleHooks {
         native: Option<CollisionRule>,
         rule: CollisionRule,
     ) -> bool {
-        let Some(state) = self.live_state(a, b, native) else {
-            return false;
-        };
-        state.overridden = rule.is_decided().then_some(rule);
-        self.replan = true;
-        self.wake_pair(a, b);
-        true
+        self.edit_pair(a, b, native, |state| {
+            state.overridden = rule.is_decided().then_some(rule);
+        })
     }
 
     /// Sets how the hooked live pair of `a` and `b` updates its contacts.
@@ -245,17 +261,13 @@ impl RuleHooks {
         native: Option<CollisionRule>,
         update: ManifoldUpdate,
     ) -> bool {
-        let Some(state) = self.live_state(a, b, native) else {
-            return false;
-        };
-        state.manifold = update;
-        *state
-            .frozen
-            .get_mut()
-            .unwrap_or_else(PoisonError::into_inner) = None;
-        self.replan = true;
-        self.wake_pair(a, b);
-        true
+        self.edit_pair(a, b, native, |state| {
+            state.manifold = update;
+            *state
+                .frozen
+                .get_mut()
+                .unwrap_or_else(PoisonError::into_inner) = None;
+        })
     }
 
     /// The manifold setting of the hooked live pair of `a` and `b` (see

@@ -9,6 +9,7 @@ mod integrity;
 mod native;
 mod node;
 mod pairs;
+mod project;
 mod resolve;
 mod rule;
 mod rule_set;

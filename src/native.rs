@@ -30,6 +30,7 @@ use rapier3d::prelude::*;
 
 use crate::node::HandleMap;
 use crate::pairs::PairKey;
+use crate::project::{Room, Settings};
 use crate::{CollisionGroup, CollisionRule, CollisionRuleSet, FullPass, Node};
 
 /// The facts that decide a native collider's pairs.
@@ -51,7 +52,12 @@ impl Class {
     }
 }
 
-/// The Rapier settings the planner gives one collider.
+/// The hook flags every hooked collider carries.
+const HOOKS: ActiveHooks =
+    ActiveHooks::FILTER_CONTACT_PAIRS.union(ActiveHooks::FILTER_INTERSECTION_PAIR);
+
+/// The Rapier settings the planner gives one collider, before they are
+/// combined with the project's own (see [`ColliderPlan::combined`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct ColliderPlan {
     /// `None`: the collider is hooked.
@@ -72,6 +78,53 @@ impl ColliderPlan {
             && self.collision == InteractionGroups::all()
             && self.solver == InteractionGroups::all()
             && self.types == ActiveCollisionTypes::default()
+    }
+
+    /// The settings a collider gets: the plan combined with the project's
+    /// own settings `own` (`docs/semantics.md`, section 6). The hook bits are
+    /// added to the project's; the project's collision and solver groups are
+    /// kept, and narrowed only where the planner gave a group a bit, which it
+    /// does only for colliders whose own groups are Rapier's defaults; the
+    /// collision types are the project's, widened where a rule lets two
+    /// non-dynamic bodies pair (never narrowed). `modifying`: the collider
+    /// also modifies contacts (`ManifoldUpdate::Never`).
+    pub(crate) fn combined(&self, own: Settings, modifying: bool) -> Settings {
+        let mut hooks = own.hooks;
+        if self.hooked() {
+            hooks |= HOOKS;
+        }
+        if modifying {
+            hooks |= ActiveHooks::MODIFY_SOLVER_CONTACTS;
+        }
+        let keep = |planned: InteractionGroups, own: InteractionGroups| {
+            if planned == InteractionGroups::all() {
+                own
+            } else {
+                planned
+            }
+        };
+        Settings {
+            collision: keep(self.collision, own.collision),
+            solver: keep(self.solver, own.solver),
+            types: own.types | (self.types - ActiveCollisionTypes::default()),
+            hooks,
+        }
+    }
+
+    /// This plan, or the hooked one where it cannot be combined exactly with
+    /// the project's settings `own`: a group bit on a collider whose own
+    /// groups are narrowed (no single group test says "both allow").
+    fn fitted(self, own: Settings, dynamic: bool) -> ColliderPlan {
+        let narrows = |planned: InteractionGroups, own: InteractionGroups| {
+            planned != InteractionGroups::all() && own != InteractionGroups::all()
+        };
+        if !self.hooked()
+            && (narrows(self.collision, own.collision) || narrows(self.solver, own.solver))
+        {
+            ColliderPlan::hooked_plan(dynamic)
+        } else {
+            self
+        }
     }
 
     /// The plan of a collider no rule reaches: Rapier's defaults.
@@ -115,6 +168,11 @@ pub(crate) struct Plan {
     /// The colliders hooked to carry the specific entries and pinned pairs
     /// of their other side (see [`plan`]).
     pub(crate) carriers: HashSet<ColliderHandle>,
+    /// What the project's settings leave to the planner, and the number of
+    /// colliders when every collider was looked at for it; `None` when the
+    /// plan gives no group a bit and relies on no collision type, so that
+    /// no project setting can conflict with it.
+    pub(crate) room: Option<(Room, usize)>,
 }
 
 impl Plan {
@@ -141,6 +199,8 @@ pub(crate) struct Request<'a> {
     /// Set when every collider must pass the hook (a calculator, a callback,
     /// the `Manual` policy, the planner turned off).
     pub(crate) all_hooked: Option<FullPass>,
+    /// The project's own settings of a collider.
+    pub(crate) own: &'a dyn Fn(ColliderHandle, &Collider) -> Settings,
 }
 
 fn is_dynamic(bodies: &RigidBodySet, collider: &Collider) -> bool {
@@ -183,7 +243,14 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
         .iter()
         .filter_map(|&h| class_of(h))
         .collect();
-    let settings = GroupSettings::new(rules, classes.iter().filter_map(|c| c.1));
+    let mut settings = GroupSettings::new(rules, classes.iter().filter_map(|c| c.1), Room::ALL);
+    if settings.needs_room() {
+        // Group bits and collision types are shared with the project's
+        // settings of every collider: look at them all.
+        let room = Room::of_world(colliders, request.own);
+        plan.room = Some((room, colliders.len()));
+        settings = GroupSettings::new(rules, classes.iter().filter_map(|c| c.1), room);
+    }
     plan.full = settings
         .reaches_defaults()
         .then_some(FullPass::DefaultGroups);
@@ -221,6 +288,8 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
                 None => ColliderPlan::hooked_plan(dynamic),
             },
         };
+        let own = colliders.get(handle).map(|c| (request.own)(handle, c));
+        let entry = own.map_or(entry, |own| entry.fitted(own, dynamic));
         plan.colliders.insert(handle, entry);
     }
     plan
@@ -329,6 +398,11 @@ pub(crate) fn replan_some(
         if pinned.contains(&handle) || touches_entries(rules, bodies, colliders, handle) {
             return None;
         }
+        let own = (request.own)(handle, collider);
+        if plan.room.is_some_and(|(room, _)| !room.holds(own)) {
+            // Its settings take bits or types the plan gave away: look again.
+            return None;
+        }
         let dynamic = is_dynamic(bodies, collider);
         let entry = match native_class(rules, bodies, colliders, handle, dynamic) {
             None => ColliderPlan::hooked_plan(dynamic),
@@ -342,7 +416,7 @@ pub(crate) fn replan_some(
             }
             Some(class) => *plan.classes.get(&class)?,
         };
-        planned.push((handle, entry));
+        planned.push((handle, entry.fitted(own, dynamic)));
     }
     Some(planned)
 }
@@ -407,13 +481,21 @@ struct GroupSettings {
     needs_hook: HashSet<CollisionGroup>,
     static_types: HashSet<CollisionGroup>,
     filters: HashMap<CollisionGroup, (Group, Group)>,
+    /// A `NoPair` relation is left to Rapier's default collision types.
+    relies_on_types: bool,
 }
 
 impl GroupSettings {
     /// The settings of the groups of `classes`, with the two default
     /// classes always counted as used: every collider no rule reaches is in
-    /// one of them.
-    fn new(rules: &CollisionRuleSet, classes: impl Iterator<Item = Class>) -> GroupSettings {
+    /// one of them. Bits are taken from `room` (what the project's settings
+    /// leave), from the highest down, away from the low bits projects
+    /// usually name their layers with.
+    fn new(
+        rules: &CollisionRuleSet,
+        classes: impl Iterator<Item = Class>,
+        room: Room,
+    ) -> GroupSettings {
         let mut members: HashMap<CollisionGroup, (bool, bool)> = HashMap::new();
         let defaults = [Class::unreached(true), Class::unreached(false)];
         for class in classes.chain(defaults) {
@@ -471,8 +553,24 @@ impl GroupSettings {
             };
         }
         let filtered_by_types = |g: CollisionGroup| !has_dynamic(g) && !static_types.contains(&g);
+        // The (DEFAULT_KINEMATIC, DEFAULT_KINEMATIC) entry gives way to a
+        // project's wider collision types (`docs/semantics.md`, section 6), so
+        // Rapier's type test decides those pairs whatever the project set.
+        let kinematic_entry = |a: CollisionGroup, b: CollisionGroup| {
+            a == CollisionGroup::DEFAULT_KINEMATIC && b == CollisionGroup::DEFAULT_KINEMATIC
+        };
+        let by_types = |a: CollisionGroup, b: CollisionGroup| {
+            filtered_by_types(a) && filtered_by_types(b) && !kinematic_entry(a, b)
+        };
+        let relies_on_types = relations
+            .iter()
+            .any(|&(a, b, rule)| rule == CollisionRule::NoPair && by_types(a, b));
         let needs_bits = |a: CollisionGroup, b: CollisionGroup, rule: CollisionRule| match rule {
-            CollisionRule::NoPair => !(filtered_by_types(a) && filtered_by_types(b)),
+            // A project type that pairs non-dynamic bodies undoes the test by
+            // types: bits then say it.
+            CollisionRule::NoPair => {
+                !(filtered_by_types(a) && filtered_by_types(b)) || (room.widened && by_types(a, b))
+            }
             // Only a dynamic body responds: other pairs need no solver test.
             CollisionRule::NoResponse => has_dynamic(a) || has_dynamic(b),
             _ => false,
@@ -489,12 +587,10 @@ impl GroupSettings {
         // One bit per involved group while they fit; the rest fall back to
         // hooks. A group with no relation to test keeps every bit as its
         // membership (a collider's default), which no filter leaves out.
-        let bits: HashMap<CollisionGroup, u32> = involved
-            .iter()
-            .take(32)
-            .enumerate()
-            .map(|(i, &g)| (g, i as u32))
-            .collect();
+        let free = (0..32u32)
+            .rev()
+            .filter(|&bit| room.bits().contains(Group::from_bits_retain(1 << bit)));
+        let bits: HashMap<CollisionGroup, u32> = involved.iter().copied().zip(free).collect();
         let filter_of = |g: CollisionGroup, excluded: CollisionRule| {
             let mut filter = Group::ALL;
             for (&h, &bit) in &bits {
@@ -516,6 +612,7 @@ impl GroupSettings {
             .collect();
         GroupSettings {
             members,
+            relies_on_types,
             bits,
             involved: involved.into_iter().collect(),
             needs_hook,
@@ -548,6 +645,13 @@ impl GroupSettings {
             solver: InteractionGroups::new(membership, solver, InteractionTestMode::And),
             types,
         })
+    }
+
+    /// Whether the plan shares something with the project's settings (group
+    /// bits, or the default collision types as a filter), so that these
+    /// must be looked at over the whole world.
+    fn needs_room(&self) -> bool {
+        !self.involved.is_empty() || self.relies_on_types
     }
 
     /// Whether a rule reaches the default groups: their plan is not

@@ -81,10 +81,14 @@ pub(crate) struct PairState {
     /// Rapier dropped the pair when its collider was regrouped, and may find
     /// it again: the state is kept for one step, but the pair is not live.
     pub(crate) absent: bool,
+    /// Whether each collider's body (in key order) was dynamic when the rule
+    /// was computed: the default groups follow the body types, which may
+    /// change on a body the hooks do not watch.
+    pub(crate) kinds: (bool, bool),
 }
 
 impl PairState {
-    pub(crate) fn new(computed: CollisionRule, step: u64) -> PairState {
+    pub(crate) fn new(computed: CollisionRule, step: u64, kinds: (bool, bool)) -> PairState {
         PairState {
             computed,
             overridden: None,
@@ -92,6 +96,7 @@ impl PairState {
             last_answer: AtomicU64::new(step),
             frozen: Mutex::new(None),
             absent: false,
+            kinds,
         }
     }
 

@@ -843,8 +843,20 @@ impl CollisionRuleSet {
         let node = node.into();
         self.detach(node);
         if self.named.remove(&node).is_some() {
+            // The nodes holding an entry about it change their pairs: logged,
+            // as an edit of theirs would be.
+            let holders: Vec<Node> = self
+                .nodes()
+                .filter(|&n| {
+                    self.record(n)
+                        .is_some_and(|r| r.specific.contains_key(&node))
+                })
+                .collect();
             for record in self.records.live_mut() {
                 record.specific.remove(&node);
+            }
+            for holder in holders {
+                self.changes.node(holder);
             }
         }
         if let Node::Body(body) = node {

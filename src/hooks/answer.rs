@@ -8,11 +8,12 @@ use std::sync::{MutexGuard, PoisonError};
 use hashbrown::HashMap;
 use rapier3d::prelude::*;
 
-use super::{CalculatorContext, PairCreated, RuleHooks};
-use crate::CollisionRule;
+use super::{CalculatorContext, PairCreated, RecalculationPolicy, RuleHooks};
 use crate::pairs::{self, ManifoldUpdate, PairKey, PairState};
+use crate::project::body_types;
 use crate::resolve::special_case;
 use crate::rule::contact_answer;
+use crate::{CollisionGroup, CollisionRule, Stage};
 
 impl RuleHooks {
     /// A pair's rule: the calculator or the default calculation, then the
@@ -35,7 +36,7 @@ impl RuleHooks {
                 };
                 special_case(bodies, colliders, a, b, calculator(&context))
             }
-            None => self.rules.resolve(bodies, colliders, a, b),
+            None => self.resolve(bodies, colliders, a, b),
         };
         if let Some(callback) = &self.on_created {
             let created = PairCreated {
@@ -50,6 +51,107 @@ impl RuleHooks {
             }
         }
         rule
+    }
+
+    /// The default calculation, where the project's settings take part: the
+    /// `(DEFAULT_KINEMATIC, DEFAULT_KINEMATIC)` entry is the rules' word for
+    /// Rapier's default collision types, so a pair of two non-dynamic bodies
+    /// that the project's own types let Rapier look at is not refused by it
+    /// (`docs/semantics.md`, section 6). Both of its chains are then in
+    /// `DEFAULT_KINEMATIC` from the deciding step up, so no later step of
+    /// the group stage decides either: the pair gets the default rule.
+    pub(super) fn resolve(
+        &self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        a: ColliderHandle,
+        b: ColliderHandle,
+    ) -> CollisionRule {
+        let why = self.rules.explain(bodies, colliders, a, b);
+        if why.rule != CollisionRule::NoPair || why.stage != Stage::Group {
+            return why.rule;
+        }
+        let kinematic = CollisionGroup::DEFAULT_KINEMATIC;
+        let by_entry = why.nodes.is_some_and(|(x, y)| {
+            self.rules.effective_group(bodies, colliders, x) == kinematic
+                && self.rules.effective_group(bodies, colliders, y) == kinematic
+        });
+        let types = body_types(bodies, colliders, a, b);
+        let (Some(ca), Some(cb)) = (colliders.get(a), colliders.get(b)) else {
+            return why.rule;
+        };
+        let non_dynamic = !types.0.is_dynamic() && !types.1.is_dynamic();
+        if by_entry
+            && non_dynamic
+            && self
+                .own_settings(a, ca)
+                .types_allow(self.own_settings(b, cb), types)
+        {
+            special_case(bodies, colliders, a, b, self.rules.default_rule())
+        } else {
+            why.rule
+        }
+    }
+
+    /// A tracked pair's rule now. Two things a computed rule rests on can
+    /// change without an edit, on colliders the hooks may not watch: a
+    /// body's type (the default groups follow it), and the project's
+    /// collision types (a computed `NoPair` between two non-dynamic bodies,
+    /// see [`resolve`](Self::resolve)). Such a pair is decided again.
+    /// Overrides and the `Manual` policy keep their answers.
+    pub(super) fn rule_now(
+        &self,
+        state: &PairState,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        a: ColliderHandle,
+        b: ColliderHandle,
+    ) -> CollisionRule {
+        let rule = state.rule();
+        if !self.recomputes(state) {
+            return rule;
+        }
+        let types = body_types(bodies, colliders, a, b);
+        let kinds = (types.0.is_dynamic(), types.1.is_dynamic());
+        let typed = rule == CollisionRule::NoPair
+            && !kinds.0
+            && !kinds.1
+            && self.calculator.is_none()
+            && self.on_created.is_none();
+        if kinds != state.kinds || typed {
+            self.calculate(bodies, colliders, a, b)
+        } else {
+            rule
+        }
+    }
+
+    /// Whether a tracked pair's rule follows what it rests on (see
+    /// [`rule_now`](Self::rule_now)).
+    fn recomputes(&self, state: &PairState) -> bool {
+        state.overridden.is_none() && self.policy != RecalculationPolicy::Manual
+    }
+
+    /// The hot path found `state` computed for other body types than the
+    /// pair's now: its rule is calculated again and kept as pending, which
+    /// replaces the table's computed rule when the step ends.
+    #[cold]
+    fn restate(
+        &self,
+        context: &PairFilterContext<'_>,
+        key: PairKey,
+        state: &PairState,
+        kinds: (bool, bool),
+    ) -> (CollisionRule, ManifoldUpdate, bool) {
+        let again = state.answered_again(self.step);
+        let pending = self.pending().get(&key).map(PairState::rule);
+        let rule = pending.unwrap_or_else(|| {
+            let (a, b) = key.colliders();
+            let rule = self.calculate(context.bodies, context.colliders, a, b);
+            self.pending()
+                .insert(key, PairState::new(rule, self.step, kinds));
+            rule
+        });
+        (rule, state.manifold, again)
     }
 
     /// The hook's slow path: a pair not in the table. Calculates its rule
@@ -70,9 +172,10 @@ impl RuleHooks {
         }
         let (a, b) = key.colliders();
         let rule = self.calculate(context.bodies, context.colliders, a, b);
+        let kinds = kinds_in(context, key);
         self.pending()
             .entry(key)
-            .or_insert_with(|| PairState::new(rule, self.step));
+            .or_insert_with(|| PairState::new(rule, self.step, kinds));
         // The CCD sweeps only bodies it marked active; a first answer to such
         // a body may be the sweep's, so a pair without response stays out of
         // it (its contacts start with the next step).
@@ -91,13 +194,36 @@ impl RuleHooks {
     fn lookup(&self, context: &PairFilterContext<'_>) -> (CollisionRule, ManifoldUpdate, bool) {
         let key = PairKey::new(context.collider1, context.collider2);
         match self.pairs.get(key) {
-            Some(state) => (
-                state.rule(),
-                state.manifold,
-                state.answered_again(self.step),
-            ),
+            Some(state) => {
+                let kinds = kinds_in(context, key);
+                let typed = state.computed == CollisionRule::NoPair && !kinds.0 && !kinds.1;
+                if (kinds != state.kinds || typed) && self.recomputes(state) {
+                    return self.restate(context, key, state, kinds);
+                }
+                (
+                    state.rule(),
+                    state.manifold,
+                    state.answered_again(self.step),
+                )
+            }
             None => self.first_sighting(context, key),
         }
+    }
+}
+
+/// Whether the body of each collider of `key` is dynamic, in key order,
+/// read from the hook's context.
+#[inline]
+fn kinds_in(context: &PairFilterContext<'_>, key: PairKey) -> (bool, bool) {
+    let dynamic = |body: Option<RigidBodyHandle>| {
+        body.and_then(|b| context.bodies.get(b))
+            .is_some_and(|b| b.is_dynamic())
+    };
+    let (first, second) = (dynamic(context.rigid_body1), dynamic(context.rigid_body2));
+    if key.colliders().0 == context.collider1 {
+        (first, second)
+    } else {
+        (second, first)
     }
 }
 

@@ -14,7 +14,11 @@ use std::sync::PoisonError;
 use rapier3d::prelude::*;
 
 use super::RuleHooks;
-use super::upkeep::{pair_exists, same_body};
+use super::upkeep::{filters_pass, kinds_of, pair_exists};
+
+/// A pair's rule as the default calculation gives it, with whether each
+/// body is dynamic; `None` when Rapier holds no such pair.
+type Native = Option<(CollisionRule, (bool, bool))>;
 use crate::pairs::{ManifoldUpdate, PairKey, PairState};
 use crate::{CollisionRule, Node};
 
@@ -98,7 +102,9 @@ impl RuleHooks {
         let key = PairKey::new(a, b);
         match self.pairs.get(key) {
             Some(state) if state.absent && !pair_exists(world.narrow_phase, a, b) => None,
-            Some(state) => Some(state.rule()),
+            // Rapier's filters stop it now (the project changed a setting).
+            Some(_) if !filters_pass(world.bodies, world.colliders, a, b) => None,
+            Some(state) => Some(self.rule_now(state, world.bodies, world.colliders, a, b)),
             None => self.rapier_rule(world, a, b),
         }
         .filter(|&rule| rule != CollisionRule::NoPair)
@@ -136,13 +142,13 @@ impl RuleHooks {
             .intersection_pairs()
             .map(|(a, b, _)| (a, b));
         contacts.chain(sensors).filter_map(move |(a, b)| {
-            if same_body(world.colliders, a, b) {
+            if !filters_pass(world.bodies, world.colliders, a, b) {
                 return None;
             }
             let rule = match self.pairs.get(PairKey::new(a, b)) {
                 // Rapier holds it: a pair kept through regrouping is back.
-                Some(state) => state.rule(),
-                None => self.rules.resolve(world.bodies, world.colliders, a, b),
+                Some(state) => self.rule_now(state, world.bodies, world.colliders, a, b),
+                None => self.resolve(world.bodies, world.colliders, a, b),
             };
             (rule != CollisionRule::NoPair).then_some((a, b, rule))
         })
@@ -191,7 +197,7 @@ impl RuleHooks {
         b: ColliderHandle,
         rule: CollisionRule,
     ) -> bool {
-        let known = self.rapier_rule(world.into(), a, b);
+        let known = self.rapier_state(world.into(), a, b);
         self.override_pair(a, b, known, rule)
     }
 
@@ -203,7 +209,7 @@ impl RuleHooks {
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
-        native: Option<CollisionRule>,
+        native: Native,
         edit: impl FnOnce(&mut PairState),
     ) -> bool {
         let Some(state) = self.live_state(a, b, native) else {
@@ -219,7 +225,7 @@ impl RuleHooks {
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
-        native: Option<CollisionRule>,
+        native: Native,
         rule: CollisionRule,
     ) -> bool {
         self.edit_pair(a, b, native, |state| {
@@ -250,7 +256,7 @@ impl RuleHooks {
         b: ColliderHandle,
         update: ManifoldUpdate,
     ) -> bool {
-        let known = self.rapier_rule(world.into(), a, b);
+        let known = self.rapier_state(world.into(), a, b);
         self.manifold_pair(a, b, known, update)
     }
 
@@ -258,7 +264,7 @@ impl RuleHooks {
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
-        native: Option<CollisionRule>,
+        native: Native,
         update: ManifoldUpdate,
     ) -> bool {
         self.edit_pair(a, b, native, |state| {
@@ -289,6 +295,12 @@ impl RuleHooks {
         self.forced.push(node.into());
     }
 
+    /// [`rapier_rule`](Self::rapier_rule), with the body kinds of the pair.
+    fn rapier_state(&self, world: WorldRef<'_>, a: ColliderHandle, b: ColliderHandle) -> Native {
+        let kinds = kinds_of(world.bodies, world.colliders, PairKey::new(a, b));
+        self.rapier_rule(world, a, b).map(|rule| (rule, kinds))
+    }
+
     /// The rule of a pair Rapier holds now, decided natively (not hooked);
     /// `None` if Rapier holds no such pair.
     fn rapier_rule(
@@ -299,9 +311,9 @@ impl RuleHooks {
     ) -> Option<CollisionRule> {
         let held = world.colliders.contains(a)
             && world.colliders.contains(b)
-            && !same_body(world.colliders, a, b)
+            && filters_pass(world.bodies, world.colliders, a, b)
             && pair_exists(world.narrow_phase, a, b);
-        held.then(|| self.rules.resolve(world.bodies, world.colliders, a, b))
+        held.then(|| self.resolve(world.bodies, world.colliders, a, b))
     }
 
     /// The table entry of a live pair; a pair the hooks do not track yet
@@ -310,12 +322,13 @@ impl RuleHooks {
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
-        native: Option<CollisionRule>,
+        native: Native,
     ) -> Option<&mut PairState> {
         let key = PairKey::new(a, b);
         if self.pairs.get(key).is_none() {
-            let rule = native.filter(|&r| r != CollisionRule::NoPair)?;
-            self.pairs.insert(key, PairState::new(rule, self.step));
+            let (rule, kinds) = native.filter(|&(r, _)| r != CollisionRule::NoPair)?;
+            self.pairs
+                .insert(key, PairState::new(rule, self.step, kinds));
         }
         self.pairs
             .get_mut(key)

@@ -15,7 +15,9 @@ use hashbrown::{HashMap, HashSet};
 use rapier3d::prelude::*;
 
 use crate::native::Plan;
+use crate::node::HandleMap;
 use crate::pairs::{PairKey, PairState, PairTable};
+use crate::project::{Settings, Written};
 use crate::{CollisionRule, CollisionRuleSet, Node, StepStats};
 
 pub use live::WorldRef;
@@ -143,6 +145,9 @@ pub struct RuleHooks {
     stats: StepStats,
     /// How many colliders the last plan hooked.
     hooked: usize,
+    /// The colliders whose settings differ from the project's: what the
+    /// project set and what the crate wrote.
+    written: HandleMap<ColliderHandle, Written>,
     /// Test oracle: look at every collider and plan everything every step.
     exhaustive: bool,
 }
@@ -190,6 +195,7 @@ impl RuleHooks {
             roster: Roster::default(),
             stats: StepStats::default(),
             hooked: 0,
+            written: HandleMap::default(),
             exhaustive: false,
         }
     }
@@ -235,6 +241,15 @@ impl RuleHooks {
     #[doc(hidden)]
     pub fn set_exhaustive(&mut self, exhaustive: bool) {
         self.exhaustive = exhaustive;
+    }
+
+    /// The project's own settings of `collider`: what it has now, except
+    /// where the crate wrote and the project has not changed them since.
+    pub(crate) fn own_settings(&self, handle: ColliderHandle, collider: &Collider) -> Settings {
+        let now = Settings::of(collider);
+        self.written
+            .get(handle)
+            .map_or(now, |written| written.own_as_of(now))
     }
 
     /// Whether the planner is on (see [`set_planner`](Self::set_planner)).

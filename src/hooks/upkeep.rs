@@ -14,11 +14,8 @@ use rapier3d::prelude::*;
 use super::{RecalculationPolicy, RuleHooks};
 use crate::native::{self, ColliderPlan, Request};
 use crate::pairs::{ManifoldUpdate, PairKey, PairState};
+use crate::project::{Settings, Written, body_types};
 use crate::{FullPass, Node, StepStats};
-
-/// The hook flags every hooked collider carries.
-const HOOKS: ActiveHooks =
-    ActiveHooks::FILTER_CONTACT_PAIRS.union(ActiveHooks::FILTER_INTERSECTION_PAIR);
 
 /// Whether Rapier holds a pair of `a` and `b` (a contact or a sensor pair).
 pub(super) fn pair_exists(
@@ -34,6 +31,37 @@ pub(super) fn pair_exists(
 pub(super) fn same_body(colliders: &ColliderSet, a: ColliderHandle, b: ColliderHandle) -> bool {
     let body = |c: ColliderHandle| colliders.get(c).and_then(|c| c.parent());
     body(a).is_some() && body(a) == body(b)
+}
+
+/// Whether Rapier's own filters before the hook let the pair of `a` and `b`
+/// through: two rigid bodies, collision types, collision groups (as they are
+/// now: the project's combined with the plan). Rapier's graph keeps an edge
+/// for a pair they stop, which is no pair.
+pub(super) fn filters_pass(
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    a: ColliderHandle,
+    b: ColliderHandle,
+) -> bool {
+    let (Some(ca), Some(cb)) = (colliders.get(a), colliders.get(b)) else {
+        return false;
+    };
+    let types = body_types(bodies, colliders, a, b);
+    !same_body(colliders, a, b)
+        && (ca.active_collision_types().test(types.0, types.1)
+            || cb.active_collision_types().test(types.0, types.1))
+        && ca.collision_groups().test(cb.collision_groups())
+}
+
+/// Whether the body of each collider of `key` is dynamic, in key order.
+pub(super) fn kinds_of(
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    key: PairKey,
+) -> (bool, bool) {
+    let (a, b) = key.colliders();
+    let types = body_types(bodies, colliders, a, b);
+    (types.0.is_dynamic(), types.1.is_dynamic())
 }
 
 /// Every collider Rapier pairs with `collider`.
@@ -117,9 +145,13 @@ impl RuleHooks {
             // The first step reads the whole rule set: it may have been
             // built, or loaded, before the hooks existed.
             Some(nodes) if !self.exhaustive && self.step > 1 => nodes,
-            _ => {
+            // The nodes the edits touched stay in, rules or not: a node
+            // whose rules were just cleared has pairs to recalculate.
+            touched => {
                 self.replan = true;
-                self.rules.ruled_nodes()
+                let mut nodes = self.rules.ruled_nodes();
+                nodes.extend(touched.into_iter().flatten());
+                nodes
             }
         };
         for &node in &changed {
@@ -148,6 +180,17 @@ impl RuleHooks {
         if let Some(more) = self.rules.touched_nodes(&removal_changes) {
             changed.extend(more);
         }
+        // The project changed a setting the plan is combined with, or
+        // colliders came or went in a world whose plan shares bits or types
+        // with every collider's project settings: plan again.
+        let recount = self
+            .plan
+            .room
+            .is_some_and(|(_, count)| count != colliders.len());
+        if recount || self.project_changes(colliders) {
+            self.replan = true;
+        }
+
         // 3. Plan the colliders under every changed node, and those newly
         // watched (a collider moved onto a watched body may have hooked pairs
         // whose rule its new chain changes).
@@ -287,9 +330,19 @@ impl RuleHooks {
                 .unwrap_or_else(PoisonError::into_inner),
         );
         for (key, state) in pending {
-            if exists(key) {
-                self.stats.pairs_created += 1;
-                self.pairs.insert(key, state);
+            if !exists(key) {
+                continue;
+            }
+            match self.pairs.get_mut(key) {
+                // Calculated again for new body types (see `rule_now`).
+                Some(tracked) => {
+                    tracked.computed = state.computed;
+                    tracked.kinds = state.kinds;
+                }
+                None => {
+                    self.stats.pairs_created += 1;
+                    self.pairs.insert(key, state);
+                }
             }
         }
 
@@ -307,7 +360,7 @@ impl RuleHooks {
             }
             for other in partners_of(narrow_phase, c) {
                 let key = PairKey::new(c, other);
-                if self.pairs.get(key).is_none() && !same_body(colliders, c, other) {
+                if self.pairs.get(key).is_none() && filters_pass(bodies, colliders, c, other) {
                     unseen.push(key);
                 }
             }
@@ -315,7 +368,9 @@ impl RuleHooks {
         for key in unseen {
             let (a, b) = key.colliders();
             let rule = self.calculate(bodies, colliders, a, b);
-            self.pairs.insert(key, PairState::new(rule, self.step));
+            let kinds = kinds_of(bodies, colliders, key);
+            self.pairs
+                .insert(key, PairState::new(rule, self.step, kinds));
         }
 
         // Forget the hooked pairs Rapier no longer has. A pair whose bodies
@@ -339,7 +394,8 @@ impl RuleHooks {
                 // Moved onto one body: Rapier never lets them interact.
                 false
             } else if regrouped.contains(&a) || regrouped.contains(&b) {
-                state.absent = !pair_exists(narrow_phase, a, b);
+                state.absent =
+                    !(pair_exists(narrow_phase, a, b) && filters_pass(bodies, colliders, a, b));
                 true
             } else if state.answered_in(step)
                 || awake(bodies, colliders, a)
@@ -350,13 +406,17 @@ impl RuleHooks {
                 answered += usize::from(state.answered_in(step));
                 // From the hooked side, whose pairs are few (Rapier walks
                 // the first collider's pairs).
-                if hooked(plan, a) {
+                let exists = if hooked(plan, a) {
                     pair_exists(narrow_phase, a, b)
                 } else {
                     pair_exists(narrow_phase, b, a)
-                }
+                };
+                exists && filters_pass(bodies, colliders, a, b)
             } else {
-                true
+                // Resting, so Rapier still holds it; but the project may have
+                // changed a setting of a collider the hooks do not watch,
+                // which Rapier's filters now stop.
+                filters_pass(bodies, colliders, a, b)
             };
             never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
             keep
@@ -444,6 +504,7 @@ impl RuleHooks {
         for &(handle, body) in removed {
             self.rules.remove_node(handle);
             self.plan.colliders.remove(handle);
+            self.written.remove(handle);
             if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
                 self.rules.remove_node(body);
             }
@@ -476,6 +537,7 @@ impl RuleHooks {
         let pinned = self.pinned();
         let ruled = self.rules.ruled_nodes();
         let reached: Vec<ColliderHandle> = self.roster.colliders().to_vec();
+        let own = |h: ColliderHandle, c: &Collider| self.own_settings(h, c);
         let request = Request {
             rules: &self.rules,
             bodies,
@@ -484,6 +546,7 @@ impl RuleHooks {
             ruled: &ruled,
             pinned: &pinned,
             all_hooked: self.full_pass(),
+            own: &own,
         };
         let plan = native::plan(&request);
         // Never pairs: the hooked side also modifies the pair's contacts.
@@ -535,6 +598,7 @@ impl RuleHooks {
         handles.sort_unstable_by_key(|h| h.into_raw_parts());
         handles.dedup();
         let pinned = self.pinned();
+        let own = |h: ColliderHandle, c: &Collider| self.own_settings(h, c);
         let request = Request {
             rules: &self.rules,
             bodies,
@@ -543,6 +607,7 @@ impl RuleHooks {
             ruled: &[],
             pinned: &pinned,
             all_hooked: self.full_pass(),
+            own: &own,
         };
         let Some(planned) = native::replan_some(&self.plan, &request, &handles) else {
             return self.apply_plan(bodies, colliders);
@@ -564,9 +629,9 @@ impl RuleHooks {
             .count();
     }
 
-    /// Gives one collider the flags, groups and types of its plan entry,
-    /// touching it only if they differ, and keeps the bookkeeping that
-    /// follows (waking, newly hooked colliders, regrouping).
+    /// Gives one collider its plan entry combined with the project's own
+    /// settings, touching it only if they differ, and keeps the bookkeeping
+    /// that follows (waking, newly hooked colliders, regrouping).
     fn configure(
         &mut self,
         bodies: &RigidBodySet,
@@ -584,43 +649,53 @@ impl RuleHooks {
         if self.policy != RecalculationPolicy::Manual && before != entry {
             self.to_wake.extend(current.parent());
         }
-        let mut hooks = if entry.hooked() {
-            HOOKS
-        } else {
-            ActiveHooks::empty()
-        };
-        if self.modifying.contains(&handle) {
-            hooks |= ActiveHooks::MODIFY_SOLVER_CONTACTS;
+        let now = Settings::of(current);
+        let own = self.own_settings(handle, current);
+        let target = entry.combined(own, self.modifying.contains(&handle));
+        // The project changed a setting through Rapier: its pairs may have
+        // ended (Rapier's own filters stop them), looked up after the step.
+        if self.written.get(handle).is_some_and(|w| w.own != own) {
+            self.touched.push(handle);
         }
-        let same = current.active_hooks() == hooks
-            && current.collision_groups() == entry.collision
-            && current.solver_groups() == entry.solver
-            && current.active_collision_types() == entry.types;
-        if same {
+        // The collider is the project's again once the crate adds nothing.
+        if target == own {
+            self.written.remove(handle);
+        } else {
+            let written = Written { own, wrote: target };
+            self.written.insert_evicting(handle, written);
+        }
+        if target == now {
             return;
         }
         self.touched.push(handle);
-        if current.collision_groups() != entry.collision || current.solver_groups() != entry.solver
-        {
+        if now.collision != target.collision || now.solver != target.solver {
             self.regrouped.insert(handle);
         }
         // A collider of a non-dynamic body may never wake: when the hook
         // takes over (or lets go of) its pairs, Rapier must look at them.
-        let rehook = planned_before && current.active_hooks() != hooks && !dynamic;
+        let rehook = planned_before && now.hooks != target.hooks && !dynamic;
         if rehook {
             self.regrouped.insert(handle);
         }
         // `get_mut` marks a collider modified: only for those that differ.
         let collider = &mut colliders[handle];
-        collider.set_active_hooks(hooks);
-        collider.set_solver_groups(entry.solver);
-        if collider.active_collision_types() != entry.types || rehook {
-            collider.set_active_collision_types(entry.types);
-            // Changing the collision types alone sets no change flag:
-            // nudging the collision groups makes Rapier look again.
+        if rehook && now.types == target.types {
             collider.set_collision_groups(InteractionGroups::none());
         }
-        collider.set_collision_groups(entry.collision);
+        target.write(collider);
+    }
+
+    /// Colliders whose settings the project changed through Rapier since
+    /// the crate wrote them: the plan is combined with the new settings
+    /// before the next step.
+    fn project_changes(&self, colliders: &ColliderSet) -> bool {
+        self.roster.colliders().iter().any(|&handle| {
+            let (Some(written), Some(collider)) = (self.written.get(handle), colliders.get(handle))
+            else {
+                return false;
+            };
+            Settings::of(collider) != written.wrote
+        })
     }
 
     /// `node` itself if it is a collider, and every collider below it.
@@ -662,6 +737,7 @@ impl RuleHooks {
                 .expect("the key came from the table");
             let before = state.rule();
             state.computed = computed;
+            state.kinds = kinds_of(bodies, colliders, key);
             if force {
                 state.overridden = None;
             }

@@ -6,7 +6,7 @@
 
 use rapier_collision_rules::CollisionRule;
 
-use crate::world::{Edit, GROUPS, KINDS, Run};
+use crate::world::{Edit, GROUPS, KINDS, LAYERS, Run, TYPES};
 
 /// Runs the world and edits that `data` decodes to.
 pub fn drive(data: &[u8]) {
@@ -28,7 +28,7 @@ pub fn drive(data: &[u8]) {
     let mut run = Run::new(&cubes, byte(next()) % 4 != 0, false);
     run.apply(&Edit::Step(1));
     while let Some(op) = next() {
-        let edit = match op % 13 {
+        let edit = match op % 16 {
             0 => Edit::Personal(byte(next()), rule(next())),
             1 => Edit::Group(
                 byte(next()),
@@ -48,6 +48,17 @@ pub fn drive(data: &[u8]) {
                 0.4 + byte(next()) as f32 / 100.0,
                 byte(next()) % KINDS.len(),
             ),
+            12 => Edit::ProjectCollision(
+                byte(next()),
+                byte(next()) % LAYERS.len(),
+                byte(next()) % LAYERS.len(),
+            ),
+            13 => Edit::ProjectSolver(
+                byte(next()),
+                byte(next()) % LAYERS.len(),
+                byte(next()) % LAYERS.len(),
+            ),
+            14 => Edit::ProjectTypes(byte(next()), byte(next()) % TYPES.len()),
             _ => Edit::Step(1 + byte(next()) % 3),
         };
         run.apply(&edit);

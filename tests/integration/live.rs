@@ -11,7 +11,7 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError};
 use rapier_collision_rules::CollisionRule;
 
-use crate::world::{Edit, GROUPS, KINDS, Run};
+use crate::world::{Edit, GROUPS, KINDS, LAYERS, Run, TYPES};
 
 fn rule() -> impl Strategy<Value = CollisionRule> {
     proptest::sample::select(CollisionRule::ALL.to_vec())
@@ -36,6 +36,9 @@ fn edit() -> impl Strategy<Value = Edit> {
         1 => (n.clone(), n.clone()).prop_map(|(c, b)| Edit::MoveCollider(c, b)),
         1 => n.clone().prop_map(Edit::Sleep),
         1 => n.clone().prop_map(Edit::Wake),
+        1 => (n.clone(), 0..LAYERS.len(), 0..LAYERS.len()).prop_map(|(c, m, f)| Edit::ProjectCollision(c, m, f)),
+        1 => (n.clone(), 0..LAYERS.len(), 0..LAYERS.len()).prop_map(|(c, m, f)| Edit::ProjectSolver(c, m, f)),
+        1 => (n.clone(), 0..TYPES.len()).prop_map(|(c, t)| Edit::ProjectTypes(c, t)),
         6 => (1..4usize).prop_map(Edit::Step),
     ]
 }

@@ -2,7 +2,9 @@
 //! test edit and step: a ground slab and boxes, `RuleHooks`, and every edit
 //! a user can make, each followed by checks of the hooks' invariants.
 
-use rapier_collision_rules::{CollisionGroup, CollisionRule, Node, RuleHooks};
+use std::collections::HashMap;
+
+use rapier_collision_rules::{CollisionGroup, CollisionRule, Node, RuleHooks, Stage};
 use rapier3d::prelude::*;
 
 #[derive(Clone, Debug)]
@@ -25,8 +27,37 @@ pub enum Edit {
     MoveCollider(usize, usize),
     Sleep(usize),
     Wake(usize),
+    /// The project sets a collider's collision groups through Rapier:
+    /// indices into [`LAYERS`] for membership and filter.
+    ProjectCollision(usize, usize, usize),
+    /// The same for solver groups.
+    ProjectSolver(usize, usize, usize),
+    /// The project sets a collider's active collision types: an index into
+    /// [`TYPES`].
+    ProjectTypes(usize, usize),
     Step(usize),
 }
+
+/// Layer sets a project may use as memberships or filters.
+pub const LAYERS: [Group; 5] = [
+    Group::ALL,
+    Group::GROUP_1,
+    Group::GROUP_2,
+    Group::GROUP_1.union(Group::GROUP_2),
+    Group::ALL.difference(Group::GROUP_1),
+];
+
+/// Collision types a project may set.
+pub const TYPES: [ActiveCollisionTypes; 3] = [
+    ActiveCollisionTypes::DYNAMIC_DYNAMIC
+        .union(ActiveCollisionTypes::DYNAMIC_KINEMATIC)
+        .union(ActiveCollisionTypes::DYNAMIC_FIXED),
+    ActiveCollisionTypes::DYNAMIC_DYNAMIC
+        .union(ActiveCollisionTypes::DYNAMIC_KINEMATIC)
+        .union(ActiveCollisionTypes::DYNAMIC_FIXED)
+        .union(ActiveCollisionTypes::KINEMATIC_FIXED),
+    ActiveCollisionTypes::all(),
+];
 
 pub const KINDS: [RigidBodyType; 3] = [
     RigidBodyType::Dynamic,
@@ -47,6 +78,26 @@ pub struct Run {
     bodies: Vec<RigidBodyHandle>,
     colliders: Vec<ColliderHandle>,
     removed: Vec<ColliderHandle>,
+    /// The settings the project gave colliders through Rapier.
+    project: HashMap<ColliderHandle, Project>,
+}
+
+/// A collider's settings as its project set them.
+#[derive(Clone, Copy, Debug)]
+struct Project {
+    collision: InteractionGroups,
+    solver: InteractionGroups,
+    types: ActiveCollisionTypes,
+}
+
+impl Default for Project {
+    fn default() -> Self {
+        Project {
+            collision: InteractionGroups::all(),
+            solver: InteractionGroups::all(),
+            types: ActiveCollisionTypes::default(),
+        }
+    }
 }
 
 impl Run {
@@ -76,6 +127,7 @@ impl Run {
             bodies: vec![ground],
             colliders: vec![floor],
             removed: Vec::new(),
+            project: HashMap::new(),
         };
         for &(x, y, kind) in cubes {
             run.add_cube(x, y, kind);
@@ -187,6 +239,41 @@ impl Run {
                     self.world.wake_up(handle, true);
                 }
             }
+            // The crate takes a setting the project changes through Rapier
+            // as the project's new one; one that leaves the collider as it
+            // is changes nothing (`docs/semantics.md`, section 6).
+            Edit::ProjectCollision(c, m, f) | Edit::ProjectSolver(c, m, f) => {
+                let handle = self.colliders[c % self.colliders.len()];
+                let groups = InteractionGroups::new(LAYERS[m], LAYERS[f], InteractionTestMode::And);
+                if let Some(collider) = self.world.colliders.get_mut(handle) {
+                    let project = self.project.entry(handle).or_default();
+                    if matches!(edit, Edit::ProjectCollision(..)) {
+                        if collider.collision_groups() != groups {
+                            project.collision = groups;
+                        }
+                        collider.set_collision_groups(groups);
+                    } else {
+                        if collider.solver_groups() != groups {
+                            project.solver = groups;
+                        }
+                        collider.set_solver_groups(groups);
+                    }
+                }
+            }
+            Edit::ProjectTypes(c, t) => {
+                let handle = self.colliders[c % self.colliders.len()];
+                if let Some(collider) = self.world.colliders.get_mut(handle) {
+                    if collider.active_collision_types() != TYPES[t] {
+                        self.project.entry(handle).or_default().types = TYPES[t];
+                    }
+                    collider.set_active_collision_types(TYPES[t]);
+                    // Rapier sets no change flag for the types: nudging the
+                    // groups makes it look at the collider's pairs again.
+                    let groups = collider.collision_groups();
+                    collider.set_collision_groups(InteractionGroups::none());
+                    collider.set_collision_groups(groups);
+                }
+            }
             Edit::Step(n) => {
                 for _ in 0..n {
                     self.step();
@@ -281,6 +368,76 @@ impl Run {
         touching
     }
 
+    fn project_of(&self, c: ColliderHandle) -> Project {
+        self.project.get(&c).copied().unwrap_or_default()
+    }
+
+    /// Whether the project's own collision groups let `a` and `b` pair.
+    pub fn project_allows(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
+        self.project_of(a)
+            .collision
+            .test(self.project_of(b).collision)
+    }
+
+    /// The rule of a pair, read from the rules and the project's settings:
+    /// `resolve`, except that a pair of two non-dynamic bodies the
+    /// project's collision types let Rapier see is not refused by the
+    /// `(DEFAULT_KINEMATIC, DEFAULT_KINEMATIC)` entry.
+    pub fn reference(&self, a: ColliderHandle, b: ColliderHandle) -> CollisionRule {
+        let (bodies, colliders) = (&self.world.bodies, &self.world.colliders);
+        let rules = self.hooks.rules();
+        let why = rules.explain(bodies, colliders, a, b);
+        let kind = |c: ColliderHandle| {
+            colliders
+                .get(c)
+                .and_then(|c| c.parent())
+                .and_then(|b| bodies.get(b))
+                .map_or(RigidBodyType::Fixed, |b| b.body_type())
+        };
+        let (ka, kb) = (kind(a), kind(b));
+        let kinematic = CollisionGroup::DEFAULT_KINEMATIC;
+        let by_entry = why.stage == Stage::Group
+            && why.rule == CollisionRule::NoPair
+            && why.nodes.is_some_and(|(x, y)| {
+                rules.effective_group(bodies, colliders, x) == kinematic
+                    && rules.effective_group(bodies, colliders, y) == kinematic
+            });
+        let typed = self.project_of(a).types.test(ka, kb) || self.project_of(b).types.test(ka, kb);
+        if by_entry && !ka.is_dynamic() && !kb.is_dynamic() && typed {
+            match rules.default_rule() {
+                CollisionRule::Normal => CollisionRule::NoResponse,
+                other => other,
+            }
+        } else {
+            why.rule
+        }
+    }
+
+    /// What decides the pair of `a` and `b`, for assert messages.
+    fn describe(&self, a: ColliderHandle, b: ColliderHandle) -> String {
+        let (bodies, colliders) = (&self.world.bodies, &self.world.colliders);
+        let side = |c: ColliderHandle| {
+            let collider = &colliders[c];
+            let kind = collider.parent().map(|b| bodies[b].body_type());
+            format!(
+                "{kind:?}, project {:?}, now types {:?} groups {:?}/{:?} hooks {:?}",
+                self.project_of(c),
+                collider.active_collision_types(),
+                collider.collision_groups().memberships,
+                collider.collision_groups().filter,
+                collider.active_hooks()
+            )
+        };
+        format!(
+            "{:?}, active bodies {}; {:?}; a: {}; b: {}",
+            self.hooks.stats(),
+            self.world.islands.num_active_bodies(),
+            self.hooks.rules().explain(bodies, colliders, a, b),
+            side(a),
+            side(b)
+        )
+    }
+
     fn check(&self) {
         let (bodies, colliders) = (&self.world.bodies, &self.world.colliders);
         let rules = self.hooks.rules();
@@ -289,7 +446,7 @@ impl Run {
                 colliders.contains(a) && colliders.contains(b),
                 "live pair ({a:?}, {b:?}) names a removed collider"
             );
-            let fresh = rules.resolve(bodies, colliders, a, b);
+            let fresh = self.reference(a, b);
             assert_eq!(rule, fresh, "live pair ({a:?}, {b:?}) is stale");
             assert_ne!(rule, CollisionRule::NoPair);
         }
@@ -305,18 +462,21 @@ impl Run {
             .filter(|&(a, b)| body(a).is_none() || body(a) != body(b))
             .collect();
         for &(a, b) in &rapier {
-            let expected = Some(rules.resolve(bodies, colliders, a, b))
-                .filter(|&r| r != CollisionRule::NoPair);
+            // Live only where both the project's groups and the rules allow.
+            let expected = Some(self.reference(a, b))
+                .filter(|&r| r != CollisionRule::NoPair && self.project_allows(a, b));
             assert_eq!(
                 self.hooks.pair_rule_in(&self.world, a, b),
                 expected,
-                "Rapier's pair ({a:?}, {b:?})"
+                "Rapier's pair ({a:?}, {b:?}): {}",
+                self.describe(a, b)
             );
             // Without the world, the hooks answer the pairs they know, exactly.
             let known = self.hooks.pair_rule(a, b);
             assert!(
                 known.is_none() || known == expected,
-                "Rapier's pair ({a:?}, {b:?}): the hooks know {known:?}, resolve says {expected:?}"
+                "Rapier's pair ({a:?}, {b:?}): the hooks know {known:?}, resolve says {expected:?}: {}",
+                self.describe(a, b)
             );
         }
         for (a, b, _) in self.hooks.pairs() {

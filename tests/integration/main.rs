@@ -5,6 +5,7 @@ mod alloc;
 mod driver;
 mod errors;
 mod live;
+mod project;
 mod properties;
 mod reach;
 mod reference;

@@ -1,0 +1,433 @@
+//! A project's own Rapier settings keep working beside the rules: collision
+//! groups and `NoPair` both filter, solver groups and `NoResponse` both drop
+//! the response, collision types are kept, runtime changes are followed, and
+//! a world with layers and no rules steps bit for bit as plain Rapier.
+
+use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
+use rapier3d::prelude::*;
+
+use crate::scenes::Scene;
+use CollisionRule::*;
+
+fn layer(memberships: Group, filter: Group) -> InteractionGroups {
+    InteractionGroups::new(memberships, filter, InteractionTestMode::And)
+}
+
+/// Bits projects name their layers with.
+const PLAYER: Group = Group::GROUP_1;
+const DEBRIS: Group = Group::GROUP_2;
+const WORLD: Group = Group::GROUP_3;
+
+/// Four columns of five boxes on a floor; column `i` gets `groups[i]` as
+/// its project collision groups.
+fn layered_pile(groups: [InteractionGroups; 4]) -> (PhysicsWorld, Vec<RigidBodyHandle>) {
+    let mut world = PhysicsWorld::new();
+    let ground =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+    world.insert_collider(
+        ColliderBuilder::cuboid(20.0, 0.5, 20.0).collision_groups(layer(WORLD, Group::ALL)),
+        Some(ground),
+    );
+    let bodies = (0..20)
+        .map(|i| {
+            let (column, level) = (i / 5, i % 5);
+            let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(
+                column as f32 * 1.01,
+                0.5 + level as f32 * 1.05,
+                0.0,
+            )));
+            world.insert_collider(
+                ColliderBuilder::cuboid(0.5, 0.5, 0.5).collision_groups(groups[column]),
+                Some(body),
+            );
+            body
+        })
+        .collect();
+    (world, bodies)
+}
+
+fn assert_same_poses(plain: &PhysicsWorld, world: &PhysicsWorld, bodies: &[RigidBodyHandle]) {
+    for &body in bodies {
+        let (a, b) = (plain.bodies[body].position(), world.bodies[body].position());
+        assert_eq!(a, b, "a box drifted from plain Rapier: {a:?} vs {b:?}");
+    }
+}
+
+fn collider_of(world: &PhysicsWorld, body: RigidBodyHandle) -> ColliderHandle {
+    world.bodies[body].colliders()[0]
+}
+
+#[test]
+fn project_layers_without_rules_step_bit_for_bit_as_plain_rapier() {
+    // Debris ignores debris, the player ignores debris.
+    let groups = [
+        layer(PLAYER, Group::ALL - DEBRIS),
+        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
+        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
+        InteractionGroups::all(),
+    ];
+    let (mut plain, bodies) = layered_pile(groups);
+    let (mut world, _) = layered_pile(groups);
+    let mut hooks = RuleHooks::default();
+    for _ in 0..150 {
+        plain.step();
+        hooks.step(&mut world);
+    }
+    assert_same_poses(&plain, &world, &bodies);
+    for (handle, collider) in world.colliders.iter() {
+        assert_eq!(
+            collider.collision_groups(),
+            plain.colliders[handle].collision_groups(),
+            "the project's groups of {handle:?} were changed"
+        );
+    }
+}
+
+#[test]
+fn group_rules_share_the_bits_project_layers_leave_free() {
+    // The rules: columns 0 and 1 never pair. The project: column 3 is on
+    // the player layer, which the floor and everything else accept.
+    let project = [
+        InteractionGroups::all(),
+        InteractionGroups::all(),
+        InteractionGroups::all(),
+        layer(PLAYER, Group::ALL),
+    ];
+    let (mut world, bodies) = layered_pile(project);
+    let mut rules = CollisionRuleSet::default();
+    let (g0, g1) = (rules.create_group(), rules.create_group());
+    rules.set_group_rule(g0, g1, NoPair);
+    for &body in &bodies[0..5] {
+        rules.set_group(body, Some(g0));
+    }
+    for &body in &bodies[5..10] {
+        rules.set_group(body, Some(g1));
+    }
+    // The same by hand: two free bits for the rule, the player layer kept.
+    let bit = |i: u32| Group::from_bits_retain(1 << i);
+    let by_hand = [
+        layer(bit(20), Group::ALL - bit(21)),
+        layer(bit(21), Group::ALL - bit(20)),
+        InteractionGroups::all(),
+        layer(PLAYER, Group::ALL),
+    ];
+    let (mut plain, _) = layered_pile(by_hand);
+    let mut hooks = RuleHooks::new(rules);
+    for _ in 0..150 {
+        plain.step();
+        hooks.step(&mut world);
+    }
+    assert_eq!(
+        hooks.hooked_count(),
+        0,
+        "the rules could share the bits: {:?}",
+        hooks.stats()
+    );
+    assert_same_poses(&plain, &world, &bodies);
+    let player = collider_of(&world, bodies[15]);
+    assert_eq!(
+        world.colliders[player].collision_groups(),
+        layer(PLAYER, Group::ALL),
+        "the player's layer was changed"
+    );
+}
+
+#[test]
+fn group_rules_fall_back_to_the_hook_where_project_layers_take_the_bits() {
+    // Column 3 accepts only the player layer: no bit is free in its filter,
+    // so the rule's groups are hooked, and stay exact. Without recycling the
+    // hooked and the hand-written worlds can be compared bit for bit.
+    let project = [
+        InteractionGroups::all(),
+        InteractionGroups::all(),
+        InteractionGroups::all(),
+        layer(PLAYER, PLAYER | WORLD),
+    ];
+    let (mut world, bodies) = layered_pile(project);
+    world.integration_parameters.contact_recycling = false;
+    let mut rules = CollisionRuleSet::default();
+    let (g0, g1) = (rules.create_group(), rules.create_group());
+    rules.set_group_rule(g0, g1, NoPair);
+    for &body in &bodies[0..5] {
+        rules.set_group(body, Some(g0));
+    }
+    for &body in &bodies[5..10] {
+        rules.set_group(body, Some(g1));
+    }
+    let bit = |i: u32| Group::from_bits_retain(1 << i);
+    // By hand, the player layer is given every bit the rule uses.
+    let by_hand = [
+        layer(bit(20), Group::ALL - bit(21)),
+        layer(bit(21), Group::ALL - bit(20)),
+        InteractionGroups::all(),
+        layer(PLAYER, PLAYER | WORLD | bit(20) | bit(21)),
+    ];
+    let (mut plain, _) = layered_pile(by_hand);
+    plain.integration_parameters.contact_recycling = false;
+    let mut hooks = RuleHooks::new(rules);
+    for _ in 0..150 {
+        plain.step();
+        hooks.step(&mut world);
+    }
+    assert_eq!(
+        hooks.hooked_count(),
+        10,
+        "the two ruled columns fall back to the hook: {:?}",
+        hooks.stats()
+    );
+    assert_same_poses(&plain, &world, &bodies);
+}
+
+/// A cube dropped on another; the project's groups and one rule between
+/// them. Returns the upper cube's height after a second.
+fn dropped(project_excludes: bool, rule: Option<(CollisionRule, bool)>) -> f32 {
+    let mut scene = Scene::new();
+    let (_, lower) = scene.cube(0.0, 0.5);
+    let (upper_body, upper) = scene.cube(0.0, 3.0);
+    if project_excludes {
+        let world = &mut scene.world;
+        world.colliders[lower].set_collision_groups(layer(DEBRIS, Group::ALL - PLAYER));
+        world.colliders[upper].set_collision_groups(layer(PLAYER, Group::ALL - DEBRIS));
+    }
+    let mut hooks = RuleHooks::default();
+    if let Some((rule, upper_names)) = rule {
+        if upper_names {
+            hooks.rules_mut().set_specific(upper, lower, rule);
+        } else {
+            hooks.rules_mut().set_specific(lower, upper, rule);
+        }
+    }
+    for _ in 0..60 {
+        hooks.step(&mut scene.world);
+    }
+    scene.y(upper_body)
+}
+
+#[test]
+fn a_pair_interacts_only_where_both_the_project_and_the_rules_allow() {
+    let rests = |y: f32| (1.3..1.7).contains(&y);
+    for upper_names in [false, true] {
+        // Groups forbid, the rule allows: the groups win.
+        let y = dropped(true, Some((Normal, upper_names)));
+        assert!(
+            !rests(y),
+            "project groups exclude, specific Normal (upper names: {upper_names}): y = {y}"
+        );
+        // Groups allow, the rule forbids: the rule wins.
+        let y = dropped(false, Some((NoPair, upper_names)));
+        assert!(
+            !rests(y),
+            "project groups allow, specific NoPair (upper names: {upper_names}): y = {y}"
+        );
+        // Both allow.
+        let y = dropped(false, Some((Normal, upper_names)));
+        assert!(rests(y), "both allow (upper names: {upper_names}): y = {y}");
+    }
+    let y = dropped(true, None);
+    assert!(!rests(y), "project groups alone: y = {y}");
+}
+
+#[test]
+fn project_solver_groups_and_a_per_pair_no_response_both_drop_the_response() {
+    for (solver_excludes, rule) in [
+        (true, None),
+        (true, Some(Normal)),
+        (false, Some(NoResponse)),
+    ] {
+        let mut scene = Scene::new();
+        let (_, lower) = scene.cube(0.0, 0.5);
+        let (upper_body, upper) = scene.cube(0.0, 3.0);
+        if solver_excludes {
+            let world = &mut scene.world;
+            world.colliders[lower].set_solver_groups(layer(DEBRIS, Group::ALL - PLAYER));
+            world.colliders[upper].set_solver_groups(layer(PLAYER, Group::ALL - DEBRIS));
+        }
+        let mut hooks = RuleHooks::default();
+        if let Some(rule) = rule {
+            hooks.rules_mut().set_specific(upper, lower, rule);
+        }
+        let mut touched = false;
+        for _ in 0..60 {
+            hooks.step(&mut scene.world);
+            touched |= scene.touching(upper, lower);
+        }
+        let y = scene.y(upper_body);
+        assert!(
+            touched && y < 1.0,
+            "solver groups exclude: {solver_excludes}, rule {rule:?}: touched {touched}, y = {y}"
+        );
+    }
+}
+
+#[test]
+fn project_collision_types_are_kept_and_pair_a_hooked_kinematic_with_a_wall() {
+    // A kinematic sensor that the project lets see fixed colliders, and a
+    // rule that hooks it (a specific entry about a fixed collider, so it
+    // carries the entry). Plain Rapier pairs it with the wall; so do the rules.
+    let run = |with_rule: bool, project_types: bool| {
+        let mut scene = Scene::new();
+        let wall_body = scene.world.insert_body(RigidBodyBuilder::fixed());
+        let wall = scene
+            .world
+            .insert_collider(ColliderBuilder::cuboid(1.0, 1.0, 1.0), Some(wall_body));
+        let door = scene
+            .world
+            .insert_body(RigidBodyBuilder::fixed().translation(Vector::new(8.0, 1.0, 0.0)));
+        let door = scene
+            .world
+            .insert_collider(ColliderBuilder::cuboid(1.0, 1.0, 1.0), Some(door));
+        let body = scene.world.insert_body(
+            RigidBodyBuilder::kinematic_position_based().translation(Vector::new(0.5, 0.0, 0.0)),
+        );
+        let mut sensor = ColliderBuilder::ball(0.5).sensor(true);
+        if project_types {
+            sensor = sensor.active_collision_types(
+                ActiveCollisionTypes::default() | ActiveCollisionTypes::KINEMATIC_FIXED,
+            );
+        }
+        let sensor = scene.world.insert_collider(sensor, Some(body));
+        let mut hooks = RuleHooks::default();
+        if with_rule {
+            hooks.rules_mut().set_specific(sensor, door, NoPair);
+        }
+        for _ in 0..3 {
+            hooks.step(&mut scene.world);
+        }
+        let sees = scene.world.narrow_phase.intersection_pair(sensor, wall) == Some(true);
+        let types = scene.world.colliders[sensor].active_collision_types();
+        (sees, hooks.pair_rule_in(&scene.world, sensor, wall), types)
+    };
+    let (plain_sees, _, _) = run(false, true);
+    assert!(
+        plain_sees,
+        "the project's types let the sensor see the wall"
+    );
+    let (sees, rule, types) = run(true, true);
+    assert!(
+        sees && rule == Some(NoResponse),
+        "with a rule on the sensor: sees {sees}, rule {rule:?}"
+    );
+    assert!(
+        types.contains(ActiveCollisionTypes::KINEMATIC_FIXED),
+        "the project's types were taken away: {types:?}"
+    );
+    // Without the project's types, the built-in entry keeps them apart.
+    let (sees, rule, _) = run(true, false);
+    assert!(
+        !sees && rule.is_none(),
+        "default types: sees {sees}, rule {rule:?}"
+    );
+}
+
+#[test]
+fn groups_the_project_changes_at_runtime_are_followed() {
+    // The lower cube is planned (a group with a rule), the upper hooked (a
+    // personal rule); the project then puts them on layers that exclude
+    // each other, through Rapier, after they touched.
+    let mut scene = Scene::new();
+    let (_, lower) = scene.cube(0.0, 0.5);
+    let (upper_body, upper) = scene.cube(0.0, 1.6);
+    let mut hooks = RuleHooks::default();
+    let rules = hooks.rules_mut();
+    let (g, h) = (rules.create_group(), rules.create_group());
+    rules.set_group(lower, Some(g));
+    rules.set_group_rule(g, h, NoPair);
+    rules.set_personal(upper, Normal);
+    for _ in 0..30 {
+        hooks.step(&mut scene.world);
+    }
+    let resting = scene.y(upper_body);
+    assert!(
+        (1.3..1.7).contains(&resting)
+            && hooks.pair_rule_in(&scene.world, upper, lower) == Some(Normal),
+        "before: y = {resting}"
+    );
+    scene.world.colliders[lower].set_collision_groups(layer(DEBRIS, Group::ALL - PLAYER));
+    scene.world.colliders[upper].set_collision_groups(layer(PLAYER, Group::ALL - DEBRIS));
+    for _ in 0..30 {
+        hooks.step(&mut scene.world);
+    }
+    let y = scene.y(upper_body);
+    assert!(y < 0.5, "the project's new layers exclude them: y = {y}");
+    assert_eq!(hooks.pair_rule_in(&scene.world, upper, lower), None);
+    assert_eq!(hooks.pair_rule(upper, lower), None);
+    // The rules never wrote over the project's new layers.
+    assert_eq!(
+        scene.world.colliders[upper].collision_groups(),
+        layer(PLAYER, Group::ALL - DEBRIS)
+    );
+}
+
+#[test]
+fn a_collider_the_rules_let_go_of_gets_the_project_settings_back() {
+    let mut scene = Scene::new();
+    let (body, cube) = scene.cube(0.0, 0.5);
+    let own = layer(DEBRIS, Group::ALL - PLAYER);
+    scene.world.colliders[cube].set_collision_groups(own);
+    scene.world.colliders[cube].set_active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_personal(body, NoResponse);
+    hooks.step(&mut scene.world);
+    let collider = &scene.world.colliders[cube];
+    assert_eq!(collider.collision_groups(), own, "hooked, the groups stay");
+    assert!(
+        collider
+            .active_hooks()
+            .contains(ActiveHooks::MODIFY_SOLVER_CONTACTS | ActiveHooks::FILTER_CONTACT_PAIRS),
+        "the project's hook bit is kept beside the crate's: {:?}",
+        collider.active_hooks()
+    );
+    hooks.rules_mut().set_personal(body, Defer);
+    hooks.step(&mut scene.world);
+    let collider = &scene.world.colliders[cube];
+    assert_eq!(
+        (collider.collision_groups(), collider.active_hooks()),
+        (own, ActiveHooks::MODIFY_SOLVER_CONTACTS),
+        "let go, the collider has the project's settings"
+    );
+}
+
+#[test]
+fn a_ruled_collider_on_its_own_layer_is_hooked_and_keeps_the_layer() {
+    // Column 0 is on the debris layer and in a group that never pairs with
+    // column 1's: a group bit cannot be added to its own layer, so it is
+    // hooked, keeps the layer, and the rule still holds.
+    let debris = layer(DEBRIS, Group::ALL);
+    let project = [
+        debris,
+        InteractionGroups::all(),
+        InteractionGroups::all(),
+        InteractionGroups::all(),
+    ];
+    let (mut world, bodies) = layered_pile(project);
+    let mut rules = CollisionRuleSet::default();
+    let (g0, g1) = (rules.create_group(), rules.create_group());
+    rules.set_group_rule(g0, g1, NoPair);
+    for &body in &bodies[0..5] {
+        rules.set_group(body, Some(g0));
+    }
+    for &body in &bodies[5..10] {
+        rules.set_group(body, Some(g1));
+    }
+    let mut hooks = RuleHooks::new(rules);
+    for _ in 0..30 {
+        hooks.step(&mut world);
+    }
+    assert_eq!(hooks.hooked_count(), 5, "{:?}", hooks.stats());
+    for i in 0..5 {
+        let (a, b) = (
+            collider_of(&world, bodies[i]),
+            collider_of(&world, bodies[5 + i]),
+        );
+        assert_eq!(world.colliders[a].collision_groups(), debris);
+        assert!(
+            !world.colliders[a].active_hooks().is_empty(),
+            "box {i} of column 0 is hooked"
+        );
+        assert_eq!(
+            hooks.pair_rule_in(&world, a, b),
+            None,
+            "boxes {i} of columns 0 and 1 pair"
+        );
+    }
+}

@@ -227,21 +227,38 @@ fn kinds_in(context: &PairFilterContext<'_>, key: PairKey) -> (bool, bool) {
     }
 }
 
-impl PhysicsHooks for RuleHooks {
-    fn filter_contact_pair(&self, context: &PairFilterContext<'_>) -> Option<SolverFlags> {
-        let (rule, manifold, again) = self.lookup(context);
-        let computes = rule.computes_contacts()
-            || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair);
-        contact_answer(computes, rule.responds(), again)
+/// The project's own hooks, and whether Rapier would have asked them.
+impl RuleHooks {
+    /// Whether the crate decides the pair: a collider of it carries the
+    /// crate's hook flag. Other pairs reach the hook only for the project's
+    /// own hook bits.
+    #[inline]
+    fn decides(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
+        let hooked = |c| self.plan.colliders.get(c).is_some_and(|p| p.hooked());
+        hooked(a) || hooked(b)
     }
 
-    fn filter_intersection_pair(&self, context: &PairFilterContext<'_>) -> bool {
-        let (rule, manifold, _) = self.lookup(context);
-        rule.computes_contacts()
-            || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair)
+    /// The project's hooks, if the project's own bits on `a` or `b` ask for
+    /// `bit` (as Rapier would ask them without the rules).
+    #[inline]
+    fn user_for(
+        &self,
+        colliders: &ColliderSet,
+        a: ColliderHandle,
+        b: ColliderHandle,
+        bit: ActiveHooks,
+    ) -> Option<&dyn PhysicsHooks> {
+        let user = self.user.as_deref()?;
+        let asks = |c: ColliderHandle| {
+            colliders
+                .get(c)
+                .is_some_and(|collider| self.own_settings(c, collider).hooks.contains(bit))
+        };
+        (asks(a) || asks(b)).then_some(user as &dyn PhysicsHooks)
     }
 
-    fn modify_solver_contacts(&self, context: &mut ContactModificationContext<'_>) {
+    /// Replays the frozen contacts of a `ManifoldUpdate::Never` pair.
+    fn replay_frozen(&self, context: &mut ContactModificationContext<'_>) {
         let key = PairKey::new(context.collider1, context.collider2);
         let Some(state) = self
             .pairs
@@ -280,6 +297,57 @@ impl PhysicsHooks for RuleHooks {
                 manifolds.push(manifold);
             }
             None => rigid.solver_contacts.clear(),
+        }
+    }
+}
+
+impl PhysicsHooks for RuleHooks {
+    fn filter_contact_pair(&self, context: &PairFilterContext<'_>) -> Option<SolverFlags> {
+        let (a, b) = (context.collider1, context.collider2);
+        let ours = if self.decides(a, b) {
+            let (rule, manifold, again) = self.lookup(context);
+            let computes = rule.computes_contacts()
+                || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair);
+            // NoPair and NoContacts never reach the project's hooks.
+            contact_answer(computes, rule.responds(), again)?
+        } else {
+            SolverFlags::default()
+        };
+        match self.user_for(context.colliders, a, b, ActiveHooks::FILTER_CONTACT_PAIRS) {
+            // The project's hooks may only restrict.
+            Some(user) => user
+                .filter_contact_pair(context)
+                .map(|theirs| ours & theirs),
+            None => Some(ours),
+        }
+    }
+
+    fn filter_intersection_pair(&self, context: &PairFilterContext<'_>) -> bool {
+        let (a, b) = (context.collider1, context.collider2);
+        if self.decides(a, b) {
+            let (rule, manifold, _) = self.lookup(context);
+            let computes = rule.computes_contacts()
+                || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair);
+            if !computes {
+                return false;
+            }
+        }
+        self.user_for(
+            context.colliders,
+            a,
+            b,
+            ActiveHooks::FILTER_INTERSECTION_PAIR,
+        )
+        .is_none_or(|user| user.filter_intersection_pair(context))
+    }
+
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext<'_>) {
+        self.replay_frozen(context);
+        let (a, b) = (context.collider1, context.collider2);
+        if let Some(user) =
+            self.user_for(context.colliders, a, b, ActiveHooks::MODIFY_SOLVER_CONTACTS)
+        {
+            user.modify_solver_contacts(context);
         }
     }
 }

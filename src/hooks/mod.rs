@@ -150,6 +150,8 @@ pub struct RuleHooks {
     written: HandleMap<ColliderHandle, Written>,
     /// Test oracle: look at every collider and plan everything every step.
     exhaustive: bool,
+    /// The project's own hooks (see [`RuleHooks::set_user_hooks`]).
+    user: Option<Box<dyn PhysicsHooks + Send + Sync>>,
 }
 
 impl std::fmt::Debug for RuleHooks {
@@ -197,6 +199,7 @@ impl RuleHooks {
             hooked: 0,
             written: HandleMap::default(),
             exhaustive: false,
+            user: None,
         }
     }
 
@@ -349,5 +352,58 @@ impl RuleHooks {
     pub fn remove_pair_created(&mut self) {
         self.on_created = None;
         self.decision_changed();
+    }
+
+    /// Keeps the project's own [`PhysicsHooks`] working beside the rules.
+    /// Rapier asks them what it would have asked them without the rules: a
+    /// collider whose own hook bits (`ActiveHooks`, set through Rapier as
+    /// before) ask for a filter or for contact modification gets it, for
+    /// the pairs the rules let through. For those pairs (`Normal`,
+    /// `NoResponse`) the project's `filter_contact_pair` and
+    /// `filter_intersection_pair` may only restrict further (their solver
+    /// flags are combined with the rule's); `NoPair` and `NoContacts` pairs
+    /// never reach them. Their `modify_solver_contacts` runs after the
+    /// crate's own (frozen contacts of `ManifoldUpdate::Never`). The hooks
+    /// must be `Send + Sync`, as [`RuleHooks`] is.
+    ///
+    /// Rapier's one-way platform works as it does without the rules:
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// /// Platforms let bodies through from below.
+    /// struct OneWay;
+    /// impl PhysicsHooks for OneWay {
+    ///     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+    ///         context.update_as_oneway_platform(Vector::Y, 0.1);
+    ///     }
+    /// }
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let platform = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, 2.0, 0.0)));
+    /// world.insert_collider(
+    ///     ColliderBuilder::cuboid(2.0, 0.1, 2.0).active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS),
+    ///     Some(platform),
+    /// );
+    /// let ball = world.insert_body(RigidBodyBuilder::dynamic().linvel(Vector::new(0.0, 8.0, 0.0)));
+    /// let b = world.insert_collider(ColliderBuilder::ball(0.25), Some(ball));
+    ///
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_personal(ball, CollisionRule::Normal);
+    /// hooks.set_user_hooks(OneWay);
+    /// for _ in 0..120 {
+    ///     hooks.step(&mut world);
+    /// }
+    /// let y = world.bodies[ball].translation().y;
+    /// assert!((2.2..2.5).contains(&y), "up through the platform, then resting on it: y = {y}");
+    /// ```
+    pub fn set_user_hooks(&mut self, hooks: impl PhysicsHooks + Send + Sync + 'static) {
+        self.user = Some(Box::new(hooks));
+    }
+
+    /// Removes the project's hooks and gives them back.
+    pub fn remove_user_hooks(&mut self) -> Option<Box<dyn PhysicsHooks + Send + Sync>> {
+        self.user.take()
     }
 }

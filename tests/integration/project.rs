@@ -431,3 +431,145 @@ fn a_ruled_collider_on_its_own_layer_is_hooked_and_keeps_the_layer() {
         );
     }
 }
+
+/// The project's hooks: platforms (user data 1) let bodies through from
+/// below, and colliders with user data 2 are kept out of every pair. Counts
+/// the filter calls per collider pair seen.
+#[derive(Default)]
+struct ProjectHooks {
+    filtered: std::sync::Mutex<Vec<(ColliderHandle, ColliderHandle)>>,
+}
+
+impl PhysicsHooks for ProjectHooks {
+    fn filter_contact_pair(&self, context: &PairFilterContext) -> Option<SolverFlags> {
+        self.filtered
+            .lock()
+            .unwrap()
+            .push((context.collider1, context.collider2));
+        let banned = |c: ColliderHandle| context.colliders[c].user_data == 2;
+        if banned(context.collider1) || banned(context.collider2) {
+            None
+        } else {
+            Some(SolverFlags::COMPUTE_RIGID_IMPULSES)
+        }
+    }
+
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+        context.update_as_oneway_platform(Vector::Y, 0.1);
+    }
+}
+
+#[test]
+fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
+    let mut world = PhysicsWorld::new();
+    let platform =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, 2.0, 0.0)));
+    let deck = world.insert_collider(
+        ColliderBuilder::cuboid(4.0, 0.1, 4.0)
+            .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+            .user_data(1),
+        Some(platform),
+    );
+    // A ball thrown up through the platform, and a ghost dropped onto it.
+    let ball = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(-1.0, 0.0, 0.0))
+            .linvel(Vector::new(0.0, 8.0, 0.0)),
+    );
+    world.insert_collider(ColliderBuilder::ball(0.25), Some(ball));
+    let ghost =
+        world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(1.0, 3.0, 0.0)));
+    let g = world.insert_collider(ColliderBuilder::ball(0.25), Some(ghost));
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_specific(ghost, platform, NoResponse);
+    hooks.set_user_hooks(ProjectHooks::default());
+    let mut paired = false;
+    for _ in 0..120 {
+        hooks.step(&mut world);
+        paired |= hooks.pair_rule(g, deck) == Some(NoResponse);
+    }
+    let (yb, yg) = (
+        world.bodies[ball].translation().y,
+        world.bodies[ghost].translation().y,
+    );
+    assert!(
+        (2.2..2.5).contains(&yb),
+        "the ball went up through the one-way platform and rests on it: y = {yb}"
+    );
+    assert!(
+        paired && yg < 0.0,
+        "the ghost fell through the platform: y = {yg}, paired {paired}"
+    );
+}
+
+#[test]
+fn the_project_filter_restricts_the_pairs_the_rules_let_through_and_never_sees_the_others() {
+    for (rule, banned) in [
+        (Normal, false),
+        (Normal, true),
+        (NoResponse, true),
+        (NoPair, false),
+        (NoContacts, false),
+    ] {
+        let mut scene = Scene::new();
+        let (_, lower) = scene.cube(0.0, 0.5);
+        let (upper_body, upper) = scene.cube(0.0, 3.0);
+        let world = &mut scene.world;
+        world.colliders[upper].set_active_hooks(ActiveHooks::FILTER_CONTACT_PAIRS);
+        if banned {
+            world.colliders[upper].user_data = 2;
+        }
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_specific(upper, lower, rule);
+        hooks.set_user_hooks(ProjectHooks::default());
+        for _ in 0..60 {
+            hooks.step(&mut scene.world);
+        }
+        let y = scene.y(upper_body);
+        assert!(hooks.remove_user_hooks().is_some(), "the hooks were set");
+        let rests = (1.3..1.7).contains(&y);
+        assert_eq!(
+            rests,
+            rule == Normal && !banned,
+            "rule {rule:?}, banned by the project: {banned}: y = {y}"
+        );
+    }
+}
+
+#[test]
+fn the_project_filter_is_asked_only_for_pairs_the_rules_let_through() {
+    use std::sync::Arc;
+    /// Shares its log with the test.
+    struct Shared(Arc<ProjectHooks>);
+    impl PhysicsHooks for Shared {
+        fn filter_contact_pair(&self, context: &PairFilterContext) -> Option<SolverFlags> {
+            self.0.filter_contact_pair(context)
+        }
+    }
+    for rule in [Normal, NoResponse, NoContacts, NoPair] {
+        let mut scene = Scene::new();
+        let (_, lower) = scene.cube(0.0, 0.5);
+        let (_, upper) = scene.cube(0.0, 1.6);
+        scene.world.colliders[upper].set_active_hooks(ActiveHooks::FILTER_CONTACT_PAIRS);
+        let log = Arc::new(ProjectHooks::default());
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_specific(upper, lower, rule);
+        hooks.set_user_hooks(Shared(log.clone()));
+        for _ in 0..10 {
+            hooks.step(&mut scene.world);
+        }
+        let asked = log
+            .filtered
+            .lock()
+            .unwrap()
+            .iter()
+            .filter(|&&(a, b)| (a, b) == (upper, lower) || (b, a) == (upper, lower))
+            .count();
+        let lets_through = matches!(rule, Normal | NoResponse);
+        assert_eq!(
+            asked > 0,
+            lets_through,
+            "rule {rule:?}: the project's filter was asked {asked} times"
+        );
+    }
+}

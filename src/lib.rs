@@ -10,6 +10,7 @@ mod native;
 mod node;
 mod pairs;
 mod project;
+mod query;
 mod resolve;
 mod rule;
 mod rule_set;

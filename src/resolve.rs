@@ -253,6 +253,28 @@ impl CollisionRuleSet {
         }
     }
 
+    /// Whether `why` is a `NoPair` given by the `(DEFAULT_KINEMATIC,
+    /// DEFAULT_KINEMATIC)` table entry: the rules' word for Rapier's default
+    /// collision types, which gives way where those types do not apply (a
+    /// project's wider types, scene queries; `docs/semantics.md`, section
+    /// 6). Both chains are then in `DEFAULT_KINEMATIC` from the deciding step
+    /// up, so no later step of the group stage decides either: the pair
+    /// gets the default rule.
+    pub(crate) fn by_kinematic_entry(
+        &self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        why: &Explanation,
+    ) -> bool {
+        let kinematic = CollisionGroup::DEFAULT_KINEMATIC;
+        why.decided == CollisionRule::NoPair
+            && why.stage == Stage::Group
+            && why.nodes.is_some_and(|(x, y)| {
+                self.effective_group(bodies, colliders, x) == kinematic
+                    && self.effective_group(bodies, colliders, y) == kinematic
+            })
+    }
+
     /// The effective group of `node` (`docs/semantics.md`): its own group, else
     /// the nearest explicit group up its chain, else the default group of
     /// the rigid body it belongs to.

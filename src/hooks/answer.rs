@@ -9,11 +9,11 @@ use hashbrown::HashMap;
 use rapier3d::prelude::*;
 
 use super::{CalculatorContext, PairCreated, RecalculationPolicy, RuleHooks};
+use crate::CollisionRule;
 use crate::pairs::{self, ManifoldUpdate, PairKey, PairState};
 use crate::project::body_types;
 use crate::resolve::special_case;
 use crate::rule::contact_answer;
-use crate::{CollisionGroup, CollisionRule, Stage};
 
 impl RuleHooks {
     /// A pair's rule: the calculator or the default calculation, then the
@@ -53,13 +53,10 @@ impl RuleHooks {
         rule
     }
 
-    /// The default calculation, where the project's settings take part: the
-    /// `(DEFAULT_KINEMATIC, DEFAULT_KINEMATIC)` entry is the rules' word for
-    /// Rapier's default collision types, so a pair of two non-dynamic bodies
-    /// that the project's own types let Rapier look at is not refused by it
-    /// (`docs/semantics.md`, section 6). Both of its chains are then in
-    /// `DEFAULT_KINEMATIC` from the deciding step up, so no later step of
-    /// the group stage decides either: the pair gets the default rule.
+    /// The default calculation, where the project's settings take part: a
+    /// pair of two non-dynamic bodies that the project's own collision types
+    /// let Rapier look at is not refused by the `(DEFAULT_KINEMATIC,
+    /// DEFAULT_KINEMATIC)` entry (see `CollisionRuleSet::by_kinematic_entry`).
     pub(super) fn resolve(
         &self,
         bodies: &RigidBodySet,
@@ -68,21 +65,17 @@ impl RuleHooks {
         b: ColliderHandle,
     ) -> CollisionRule {
         let why = self.rules.explain(bodies, colliders, a, b);
-        if why.rule != CollisionRule::NoPair || why.stage != Stage::Group {
+        if why.rule != CollisionRule::NoPair
+            || !self.rules.by_kinematic_entry(bodies, colliders, &why)
+        {
             return why.rule;
         }
-        let kinematic = CollisionGroup::DEFAULT_KINEMATIC;
-        let by_entry = why.nodes.is_some_and(|(x, y)| {
-            self.rules.effective_group(bodies, colliders, x) == kinematic
-                && self.rules.effective_group(bodies, colliders, y) == kinematic
-        });
         let types = body_types(bodies, colliders, a, b);
         let (Some(ca), Some(cb)) = (colliders.get(a), colliders.get(b)) else {
             return why.rule;
         };
         let non_dynamic = !types.0.is_dynamic() && !types.1.is_dynamic();
-        if by_entry
-            && non_dynamic
+        if non_dynamic
             && self
                 .own_settings(a, ca)
                 .types_allow(self.own_settings(b, cb), types)

@@ -7,6 +7,7 @@ mod errors;
 mod live;
 mod project;
 mod properties;
+mod query;
 mod reach;
 mod reference;
 #[cfg(feature = "serde")]

@@ -1,5 +1,6 @@
-//! A ragdoll of five limbs: the limbs' bodies hang under the pelvis in the
-//! parent map and inherit its group, which ignores itself. The limbs start
+//! A ragdoll of five limbs held by Rapier's joints: the parent map is read
+//! from the joints in one call, so the limbs' bodies hang under the pelvis
+//! and inherit its group, which ignores itself. The limbs start
 //! overlapping, fall, and land on the ground without pushing each other.
 //!
 //! `cargo run --example ragdoll`
@@ -27,14 +28,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let collider = world.insert_collider(ColliderBuilder::cuboid(0.25, 0.15, 0.15), Some(body));
         limbs.push((name, body, collider));
     }
+    // Hips and knees: a ball joint halfway between two limbs.
+    for (a, b) in [(0, 1), (1, 2), (0, 3), (3, 4)] {
+        let half = (parts[b].1 - parts[a].1) / 2.0;
+        let joint = SphericalJointBuilder::new()
+            .local_anchor1(Vector::new(half, 0.0, 0.0))
+            .local_anchor2(Vector::new(-half, 0.0, 0.0));
+        world
+            .impulse_joints
+            .insert(limbs[a].1, limbs[b].1, joint, true);
+    }
     let mut rules = CollisionRuleSet::default();
     let ragdoll = rules.create_group();
     rules.set_group_rule(ragdoll, ragdoll, CollisionRule::NoPair);
     rules.set_group(limbs[0].1, Some(ragdoll));
-    rules.set_parent(limbs[1].1, limbs[0].1)?; // left thigh under the pelvis
-    rules.set_parent(limbs[2].1, limbs[1].1)?; // left shin under the thigh
-    rules.set_parent(limbs[3].1, limbs[0].1)?;
-    rules.set_parent(limbs[4].1, limbs[3].1)?;
+    // Thighs under the pelvis, shins under the thighs, read from the joints.
+    let links = rules.set_parents_from_impulse_joints(&world.impulse_joints, limbs[0].1)?;
+    println!("parent links read from the joints: {links}");
+    if rules.parent(limbs[2].1) != Some(limbs[1].1) {
+        return Err("the left shin does not hang under the left thigh".into());
+    }
     let why = rules.explain(&world.bodies, &world.colliders, limbs[2].2, limbs[4].2);
     println!(
         "shin against shin: {:?}, decided by {:?} (groups inherited from the pelvis)",

@@ -6,6 +6,7 @@ mod group;
 mod hierarchy;
 mod hooks;
 mod integrity;
+mod joints;
 mod native;
 mod node;
 mod pairs;

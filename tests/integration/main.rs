@@ -4,6 +4,7 @@
 mod alloc;
 mod driver;
 mod errors;
+mod joints;
 mod live;
 mod project;
 mod properties;

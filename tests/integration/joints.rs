@@ -1,0 +1,157 @@
+//! Parent maps filled from Rapier's joints equal the same maps written by
+//! hand, and a refused one changes nothing.
+
+use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleError};
+use rapier3d::prelude::*;
+
+/// A ragdoll: pelvis, torso, head, two arms of two links, two legs of two
+/// links; `(child, parent)` in the order they are jointed.
+fn ragdoll(world: &mut PhysicsWorld) -> (RigidBodyHandle, Vec<(RigidBodyHandle, RigidBodyHandle)>) {
+    let mut body = |y: f32| {
+        let body =
+            world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, y, 0.0)));
+        world.insert_collider(ColliderBuilder::capsule_y(0.2, 0.1), Some(body));
+        body
+    };
+    let pelvis = body(1.0);
+    let torso = body(1.5);
+    let head = body(2.0);
+    let mut links = vec![(torso, pelvis), (head, torso)];
+    for _ in 0..2 {
+        let upper = body(1.5);
+        let lower = body(1.2);
+        links.extend([(upper, torso), (lower, upper)]);
+        let thigh = body(0.6);
+        let shin = body(0.2);
+        links.extend([(thigh, pelvis), (shin, thigh)]);
+    }
+    (pelvis, links)
+}
+
+fn joint() -> SphericalJointBuilder {
+    SphericalJointBuilder::new().local_anchor2(Vector::new(0.0, 0.3, 0.0))
+}
+
+fn sorted(rules: &CollisionRuleSet) -> Vec<((u32, u32), (u32, u32))> {
+    let mut links: Vec<_> = rules
+        .parents()
+        .map(|(c, p)| (c.into_raw_parts(), p.into_raw_parts()))
+        .collect();
+    links.sort();
+    links
+}
+
+/// The rule set a ragdoll gets: one group whose members ignore each other.
+fn rules_with(
+    group_of: impl Fn(&mut CollisionRuleSet) -> Result<(), RuleError>,
+    root: RigidBodyHandle,
+) -> Result<CollisionRuleSet, RuleError> {
+    let mut rules = CollisionRuleSet::default();
+    let g = rules.create_group();
+    rules.set_group_rule(g, g, CollisionRule::NoPair);
+    rules.set_group(root, Some(g));
+    group_of(&mut rules)?;
+    Ok(rules)
+}
+
+fn assert_same_resolution(world: &PhysicsWorld, a: &CollisionRuleSet, b: &CollisionRuleSet) {
+    for (c1, _) in world.colliders.iter() {
+        for (c2, _) in world.colliders.iter() {
+            assert_eq!(
+                a.resolve(&world.bodies, &world.colliders, c1, c2),
+                b.resolve(&world.bodies, &world.colliders, c1, c2),
+                "({c1:?}, {c2:?})"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_multibody_ragdoll_gets_the_parent_map_written_by_hand() -> Result<(), RuleError> {
+    let mut world = PhysicsWorld::new();
+    let (pelvis, links) = ragdoll(&mut world);
+    for &(child, parent) in &links {
+        world.multibody_joints.insert(parent, child, joint(), true);
+    }
+    let by_hand = rules_with(
+        |rules| links.iter().try_for_each(|&(c, p)| rules.set_parent(c, p)),
+        pelvis,
+    )?;
+    // From any link of the multibody.
+    let from_joints = rules_with(
+        |rules| {
+            let set = rules.set_parents_from_multibody(&world.multibody_joints, links[5].0)?;
+            assert_eq!(set, links.len());
+            Ok(())
+        },
+        pelvis,
+    )?;
+    assert_eq!(sorted(&from_joints), sorted(&by_hand));
+    assert_same_resolution(&world, &from_joints, &by_hand);
+    let (head, torso) = (links[1].0, links[0].0);
+    assert_eq!(
+        from_joints.effective_group(&world.bodies, &world.colliders, head),
+        by_hand.effective_group(&world.bodies, &world.colliders, torso),
+    );
+    assert_ne!(
+        from_joints.effective_group(&world.bodies, &world.colliders, head),
+        CollisionGroup::DEFAULT_DYNAMIC,
+        "the head inherits the ragdoll's group"
+    );
+    Ok(())
+}
+
+#[test]
+fn impulse_joints_from_a_root_give_the_parent_map_written_by_hand() -> Result<(), RuleError> {
+    let mut world = PhysicsWorld::new();
+    let (pelvis, links) = ragdoll(&mut world);
+    // Joints in either direction: the walk follows them both ways.
+    for (i, &(child, parent)) in links.iter().enumerate() {
+        if i % 2 == 0 {
+            world.impulse_joints.insert(parent, child, joint(), true);
+        } else {
+            world.impulse_joints.insert(child, parent, joint(), true);
+        }
+    }
+    // A loop: the hands joined to each other. The walk enters it once.
+    let (left_hand, right_hand) = (links[3].0, links[7].0);
+    world
+        .impulse_joints
+        .insert(left_hand, right_hand, joint(), true);
+    let by_hand = rules_with(
+        |rules| links.iter().try_for_each(|&(c, p)| rules.set_parent(c, p)),
+        pelvis,
+    )?;
+    let from_joints = rules_with(
+        |rules| {
+            let set = rules.set_parents_from_impulse_joints(&world.impulse_joints, pelvis)?;
+            assert_eq!(set, links.len());
+            Ok(())
+        },
+        pelvis,
+    )?;
+    assert_eq!(sorted(&from_joints), sorted(&by_hand));
+    assert_same_resolution(&world, &from_joints, &by_hand);
+    Ok(())
+}
+
+#[test]
+fn a_joint_map_that_would_close_a_cycle_is_refused_and_changes_nothing() {
+    let mut world = PhysicsWorld::new();
+    let (pelvis, links) = ragdoll(&mut world);
+    for &(child, parent) in &links {
+        world.impulse_joints.insert(parent, child, joint(), true);
+    }
+    let mut rules = CollisionRuleSet::default();
+    // The pelvis already hangs under a shin: walking from the pelvis makes
+    // that shin its descendant.
+    let shin = links[5].0;
+    rules.set_parent(pelvis, shin).expect("a root under a body");
+    let before = sorted(&rules);
+    let refused = rules.set_parents_from_impulse_joints(&world.impulse_joints, pelvis);
+    assert!(
+        matches!(refused, Err(RuleError::Cycle { .. })),
+        "a cycle through the existing link: {refused:?}"
+    );
+    assert_eq!(sorted(&rules), before, "the refused call changed the map");
+}

@@ -7,6 +7,7 @@ mod hierarchy;
 mod hooks;
 mod integrity;
 mod joints;
+mod layers;
 mod native;
 mod node;
 mod pairs;

@@ -573,3 +573,63 @@ fn the_project_filter_is_asked_only_for_pairs_the_rules_let_through() {
         );
     }
 }
+
+#[test]
+fn layers_moved_into_the_rules_step_bit_for_bit_as_the_layers() {
+    // Debris ignores debris and the player; column 2 does not respond to
+    // the player (solver groups).
+    let collision = [
+        layer(PLAYER, Group::ALL - DEBRIS),
+        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
+        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
+        InteractionGroups::all(),
+    ];
+    let (mut plain, bodies) = layered_pile(collision);
+    let solver_of_column = |column: usize| match column {
+        0 => layer(PLAYER, Group::ALL),
+        3 => layer(Group::GROUP_4, Group::ALL - PLAYER),
+        _ => InteractionGroups::all(),
+    };
+    for (i, &body) in bodies.iter().enumerate() {
+        let collider = collider_of(&plain, body);
+        plain.colliders[collider].set_solver_groups(solver_of_column(i / 5));
+    }
+    // The same world with its layers moved into the rules.
+    let (mut world, _) = layered_pile([InteractionGroups::all(); 4]);
+    let floor_setting = (layer(WORLD, Group::ALL), InteractionGroups::all());
+    let mut settings = vec![floor_setting];
+    settings.extend((0..20).map(|i| (collision[i / 5], solver_of_column(i / 5))));
+    let mut rules = CollisionRuleSet::default();
+    let groups = rules.groups_from_layers(&settings);
+    let floor = world
+        .colliders
+        .iter()
+        .next()
+        .map(|(h, _)| h)
+        .expect("the floor");
+    world.colliders[floor].set_collision_groups(InteractionGroups::all());
+    // On the body: a chain whose nodes are in different groups is hooked.
+    let ground = world.colliders[floor].parent().expect("on the ground");
+    rules.set_group(ground, Some(groups[0]));
+    for (i, &body) in bodies.iter().enumerate() {
+        rules.set_group(body, Some(groups[1 + i]));
+    }
+    let mut hooks = RuleHooks::new(rules);
+    for _ in 0..150 {
+        plain.step();
+        hooks.step(&mut world);
+    }
+    let hooked: Vec<_> = world
+        .colliders
+        .iter()
+        .filter(|(_, c)| !c.active_hooks().is_empty())
+        .map(|(h, c)| (h, c.parent().map(|b| world.bodies[b].body_type())))
+        .collect();
+    assert_eq!(
+        hooks.hooked_count(),
+        0,
+        "hooked: {hooked:?}, {:?}",
+        hooks.stats()
+    );
+    assert_same_poses(&plain, &world, &bodies);
+}

@@ -70,6 +70,12 @@ pub struct StepStats {
     pub tracked_pairs: usize,
     /// Colliders and bodies found removed and forgotten before the step.
     pub removed_objects: usize,
+    /// Whether the current plan shares Rapier's group bits or default
+    /// collision types with the project's settings of every collider, so
+    /// that those were read over the whole world when it was made (again
+    /// whenever colliders come or go; see
+    /// [`RuleHooks::project_settings_changed`](crate::RuleHooks::project_settings_changed)).
+    pub shares_project_bits: bool,
     /// Whether the hooks looked up hooked pairs in Rapier's graph after the
     /// step. They skip it when no body was awake before or after the step
     /// and nothing changed (a resting pair cannot have ended).

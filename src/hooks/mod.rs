@@ -229,9 +229,10 @@ impl RuleHooks {
     /// registered or the policy is `Manual`: those need every pair to pass
     /// the hook.
     ///
-    /// The crate owns the collision groups, solver groups, active hooks and
-    /// active collision types of the colliders the rules reach (all of
-    /// them during a [`FullPass`](crate::FullPass)); the others keep Rapier's settings.
+    /// The crate never writes over a project's own settings: it combines
+    /// its plan with each collider's collision groups, solver groups,
+    /// collision types and hook bits (`docs/semantics.md`, section 6), and a
+    /// collider the rules no longer reach gets the project's settings back.
     pub fn set_planner(&mut self, enabled: bool) {
         self.planner = enabled;
         self.replan = true;
@@ -400,6 +401,18 @@ impl RuleHooks {
     /// ```
     pub fn set_user_hooks(&mut self, hooks: impl PhysicsHooks + Send + Sync + 'static) {
         self.user = Some(Box::new(hooks));
+    }
+
+    /// Tells the hooks that the project changed, through Rapier, the
+    /// collision groups, solver groups or collision types of colliders the
+    /// rules do not reach. Changes on colliders the rules reach are noticed
+    /// by themselves, and so is any collider added or removed; the hooks do
+    /// not look at the others every step, which would cost in proportion to
+    /// the world. It matters only while the plan gives groups bits shared
+    /// with the project's settings (`stats().shares_project_bits`): the
+    /// next step reads every collider's settings and plans again.
+    pub fn project_settings_changed(&mut self) {
+        self.replan = true;
     }
 
     /// Removes the project's hooks and gives them back.

@@ -244,6 +244,7 @@ impl RuleHooks {
         }
         self.stats.hooked_colliders = self.hooked;
         self.stats.full_pass = self.plan.full;
+        self.stats.shares_project_bits = self.plan.room.is_some();
         self.stats.watched_colliders = self.roster.collider_count();
         self.stats.watched_bodies = self.roster.body_count();
     }

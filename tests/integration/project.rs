@@ -633,3 +633,44 @@ fn layers_moved_into_the_rules_step_bit_for_bit_as_the_layers() {
     );
     assert_same_poses(&plain, &world, &bodies);
 }
+
+#[test]
+fn after_project_settings_changed_the_plan_reads_every_collider_again() {
+    // A cube no rule reaches drops onto a box whose group has a bit; while
+    // it falls, the project narrows the cube's filter to the player layer,
+    // which leaves the group's bit out.
+    let run = |told: bool| {
+        let mut scene = Scene::new();
+        let (a, _) = scene.cube(0.0, 0.5);
+        let (b, _) = scene.cube(3.0, 0.5);
+        let (cube_body, cube) = scene.cube(0.0, 3.0);
+        let mut hooks = RuleHooks::default();
+        let rules = hooks.rules_mut();
+        let (g, h) = (rules.create_group(), rules.create_group());
+        rules.set_group_rule(g, h, NoPair);
+        rules.set_group(a, Some(g));
+        rules.set_group(b, Some(h));
+        hooks.step(&mut scene.world);
+        let shares = hooks.stats().shares_project_bits;
+        scene.world.colliders[cube].set_collision_groups(layer(PLAYER, PLAYER));
+        if told {
+            hooks.project_settings_changed();
+        }
+        for _ in 0..60 {
+            hooks.step(&mut scene.world);
+        }
+        (shares, scene.y(cube_body))
+    };
+    let (shares, y) = run(true);
+    assert!(shares, "the group rule's bits are shared with the project");
+    // The box's own groups are Rapier's defaults: the cube lands on it.
+    assert!(
+        (1.3..1.7).contains(&y),
+        "told: the cube rests on the box: y = {y}"
+    );
+    let (_, y) = run(false);
+    assert!(
+        y < 1.0,
+        "not told, the plan keeps bits the cube's new filter leaves out: y = {y}"
+    );
+}

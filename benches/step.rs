@@ -11,7 +11,12 @@
 //! - `specific`: specific rules (`NoResponse`, `NoContacts`) on 5% of the
 //!   bodies, each about a body across the pile, against plain Rapier;
 //! - `hooked`: no rules but the planner off (every collider hooked), against
-//!   plain Rapier.
+//!   plain Rapier;
+//! - `layers`, `layers+groups`, `layers+specific`: the project's own layers
+//!   on every box in both worlds (a membership bit per column, a filter that
+//!   leaves out a layer no box is on), with no rules, the group rules, and
+//!   the specific rules. The layers change no contact, so each plain twin is
+//!   the one of the variant without layers, plus the layers.
 
 mod common;
 
@@ -74,15 +79,39 @@ pub fn variant_rules(variant: &str, boxes: &[(RigidBodyHandle, usize)]) -> Colli
     rules
 }
 
+/// The project's layers: box `i` of column `c` is on layer `c % 3` (bits
+/// 0 to 2), and every box accepts every layer but bit 7, which no box is on.
+fn project_layers(world: &mut PhysicsWorld, boxes: &[(RigidBodyHandle, usize)]) {
+    for &(body, column) in boxes {
+        let collider = world.bodies[body].colliders()[0];
+        let layer = Group::from_bits_retain(1 << (column % 3));
+        let groups =
+            InteractionGroups::new(layer, Group::ALL - Group::GROUP_8, InteractionTestMode::And);
+        world.colliders[collider].set_collision_groups(groups);
+    }
+}
+
 /// A variant's two worlds: the plain one with hand-written groups where the
-/// variant needs them.
+/// variant needs them, and the project's layers in both where it has them.
 fn twins(variant: &str, n: usize) -> Twins {
+    let (layers, rules) = match variant.strip_prefix("layers") {
+        Some(rest) => (true, rest.strip_prefix('+').unwrap_or("none")),
+        None => (false, variant),
+    };
     let (mut plain, boxes) = pile(n, false);
-    if variant == "groups" {
+    if rules == "groups" {
         hand_written_groups(&mut plain, &boxes);
     }
-    let (world, boxes) = pile(n, false);
-    let mut hooks = RuleHooks::new(variant_rules(variant, &boxes));
+    let (mut world, boxes) = pile(n, false);
+    if layers {
+        // The hand-written groups keep their own bits for collisions; the
+        // layers are the plain twin's memberships only where it has none.
+        if rules != "groups" {
+            project_layers(&mut plain, &boxes);
+        }
+        project_layers(&mut world, &boxes);
+    }
+    let mut hooks = RuleHooks::new(variant_rules(rules, &boxes));
     hooks.set_planner(variant != "hooked");
     Twins {
         plain,
@@ -92,6 +121,18 @@ fn twins(variant: &str, n: usize) -> Twins {
     }
 }
 
+/// Every variant, in the order they are reported.
+const VARIANTS: &[&str] = &[
+    "control",
+    "none",
+    "groups",
+    "specific",
+    "hooked",
+    "layers",
+    "layers+groups",
+    "layers+specific",
+];
+
 fn step(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group
@@ -99,7 +140,7 @@ fn step(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(6))
         .warm_up_time(Duration::from_secs(1));
     for n in [1000, 4000] {
-        for variant in ["none", "groups", "specific", "hooked"] {
+        for variant in VARIANTS.iter().filter(|v| **v != "control") {
             let mut twins = twins(variant, n);
             for (name, rules) in [("plain", false), ("rules", true)] {
                 let id = BenchmarkId::new(format!("{variant}/{name}"), n);
@@ -155,7 +196,7 @@ fn edit(c: &mut Criterion) {
 fn paired() {
     println!("paired ratios (rules / plain, median of 3 runs of 100 step pairs):");
     for n in [1000, 4000] {
-        for variant in ["control", "none", "groups", "specific", "hooked"] {
+        for &variant in VARIANTS {
             // STEP_VARIANTS=none,groups limits the paired runs to those variants.
             if std::env::var("STEP_VARIANTS").is_ok_and(|v| !v.split(',').any(|x| x == variant)) {
                 continue;
@@ -172,7 +213,7 @@ fn paired() {
                 })
                 .collect();
             ratios.sort_by(f64::total_cmp);
-            println!("  {variant:>8} {n:>5}: {:.3}", ratios[1]);
+            println!("  {variant:>15} {n:>5}: {:.3}", ratios[1]);
         }
     }
 }

@@ -639,10 +639,22 @@ impl GroupSettings {
         } else {
             ActiveCollisionTypes::all()
         };
+        // A group's bit narrows only the groups that test it: its collision
+        // groups when a NoPair relation leaves a bit out of its filter (the
+        // relation is symmetric, so then the other side leaves its bit out
+        // too), its solver groups likewise for NoResponse. The other kind
+        // stays Rapier's default, which the project's own settings replace.
+        let narrowed = |filter: Group| {
+            if filter == Group::ALL {
+                InteractionGroups::all()
+            } else {
+                InteractionGroups::new(membership, filter, InteractionTestMode::And)
+            }
+        };
         Some(ColliderPlan {
             class: Some(class),
-            collision: InteractionGroups::new(membership, collision, InteractionTestMode::And),
-            solver: InteractionGroups::new(membership, solver, InteractionTestMode::And),
+            collision: narrowed(collision),
+            solver: narrowed(solver),
             types,
         })
     }

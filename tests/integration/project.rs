@@ -46,6 +46,21 @@ fn layered_pile(groups: [InteractionGroups; 4]) -> (PhysicsWorld, Vec<RigidBodyH
     (world, bodies)
 }
 
+/// The rules of the group tests: columns 0 and 1 of a layered pile in two
+/// groups that never pair.
+fn first_columns_apart(bodies: &[RigidBodyHandle]) -> CollisionRuleSet {
+    let mut rules = CollisionRuleSet::default();
+    let (g0, g1) = (rules.create_group(), rules.create_group());
+    rules.set_group_rule(g0, g1, NoPair);
+    for &body in &bodies[0..5] {
+        rules.set_group(body, Some(g0));
+    }
+    for &body in &bodies[5..10] {
+        rules.set_group(body, Some(g1));
+    }
+    rules
+}
+
 fn assert_same_poses(plain: &PhysicsWorld, world: &PhysicsWorld, bodies: &[RigidBodyHandle]) {
     for &body in bodies {
         let (a, b) = (plain.bodies[body].position(), world.bodies[body].position());
@@ -94,15 +109,7 @@ fn group_rules_share_the_bits_project_layers_leave_free() {
         layer(PLAYER, Group::ALL),
     ];
     let (mut world, bodies) = layered_pile(project);
-    let mut rules = CollisionRuleSet::default();
-    let (g0, g1) = (rules.create_group(), rules.create_group());
-    rules.set_group_rule(g0, g1, NoPair);
-    for &body in &bodies[0..5] {
-        rules.set_group(body, Some(g0));
-    }
-    for &body in &bodies[5..10] {
-        rules.set_group(body, Some(g1));
-    }
+    let rules = first_columns_apart(&bodies);
     // The same by hand: two free bits for the rule, the player layer kept.
     let bit = |i: u32| Group::from_bits_retain(1 << i);
     let by_hand = [
@@ -145,15 +152,7 @@ fn group_rules_fall_back_to_the_hook_where_project_layers_take_the_bits() {
     ];
     let (mut world, bodies) = layered_pile(project);
     world.integration_parameters.contact_recycling = false;
-    let mut rules = CollisionRuleSet::default();
-    let (g0, g1) = (rules.create_group(), rules.create_group());
-    rules.set_group_rule(g0, g1, NoPair);
-    for &body in &bodies[0..5] {
-        rules.set_group(body, Some(g0));
-    }
-    for &body in &bodies[5..10] {
-        rules.set_group(body, Some(g1));
-    }
+    let rules = first_columns_apart(&bodies);
     let bit = |i: u32| Group::from_bits_retain(1 << i);
     // By hand, the player layer is given every bit the rule uses.
     let by_hand = [
@@ -400,15 +399,7 @@ fn a_ruled_collider_on_its_own_layer_is_hooked_and_keeps_the_layer() {
         InteractionGroups::all(),
     ];
     let (mut world, bodies) = layered_pile(project);
-    let mut rules = CollisionRuleSet::default();
-    let (g0, g1) = (rules.create_group(), rules.create_group());
-    rules.set_group_rule(g0, g1, NoPair);
-    for &body in &bodies[0..5] {
-        rules.set_group(body, Some(g0));
-    }
-    for &body in &bodies[5..10] {
-        rules.set_group(body, Some(g1));
-    }
+    let rules = first_columns_apart(&bodies);
     let mut hooks = RuleHooks::new(rules);
     for _ in 0..30 {
         hooks.step(&mut world);

@@ -10,12 +10,16 @@ use rapier3d::prelude::*;
 
 use crate::Node;
 use crate::node::HandleMap;
+use crate::project::Settings;
 
 /// What the hooks remember of a watched collider.
 #[derive(Clone, Copy, Debug)]
 struct Known {
     body: Option<RigidBodyHandle>,
     dynamic: bool,
+    /// What the crate last wrote to it, if it differs from the project's
+    /// settings: the look compares, to notice the project's changes.
+    wrote: Option<Settings>,
     /// An edit touched it: the next look asks whether the rules still reach it.
     marked: bool,
 }
@@ -55,6 +59,9 @@ pub(crate) struct Look {
     pub(crate) added: Vec<ColliderHandle>,
     /// Colliders no longer watched: the rules no longer reach them.
     pub(crate) released: Vec<ColliderHandle>,
+    /// A watched collider's settings differ from what the crate wrote: the
+    /// project changed them through Rapier.
+    pub(crate) project_changed: bool,
 }
 
 fn dynamic(bodies: &RigidBodySet, body: Option<RigidBodyHandle>) -> bool {
@@ -95,6 +102,7 @@ impl Roster {
         let known = Known {
             body,
             dynamic: dynamic(bodies, body),
+            wrote: None,
             marked: false,
         };
         // A watched collider in a reused slot stays in the list: the next
@@ -122,6 +130,14 @@ impl Roster {
         self.bodies.insert_evicting(body, known);
         self.body_list.push(body);
         true
+    }
+
+    /// Records what the crate wrote to a watched collider (`None`: the
+    /// project's own settings).
+    pub(crate) fn wrote(&mut self, collider: ColliderHandle, wrote: Option<Settings>) {
+        if let Some(known) = self.colliders.get_mut(collider) {
+            known.wrote = wrote;
+        }
     }
 
     /// Marks a watched `node`: whether the rules still reach it is asked at
@@ -214,6 +230,9 @@ impl Roster {
                 look.removed_colliders.push((handle, None));
                 return false;
             };
+            look.project_changed |= known
+                .wrote
+                .is_some_and(|wrote| Settings::of(collider) != wrote);
             let body = collider.parent();
             let is_dynamic = dynamic(bodies, body);
             if known.body != body {

@@ -187,7 +187,7 @@ impl RuleHooks {
             .plan
             .room
             .is_some_and(|(_, count)| count != colliders.len());
-        if recount || self.project_changes(colliders) {
+        if recount || look.project_changed {
             self.replan = true;
         }
 
@@ -661,9 +661,11 @@ impl RuleHooks {
         // The collider is the project's again once the crate adds nothing.
         if target == own {
             self.written.remove(handle);
+            self.roster.wrote(handle, None);
         } else {
             let written = Written { own, wrote: target };
             self.written.insert_evicting(handle, written);
+            self.roster.wrote(handle, Some(target));
         }
         if target == now {
             return;
@@ -684,19 +686,6 @@ impl RuleHooks {
             collider.set_collision_groups(InteractionGroups::none());
         }
         target.write(collider);
-    }
-
-    /// Colliders whose settings the project changed through Rapier since
-    /// the crate wrote them: the plan is combined with the new settings
-    /// before the next step.
-    fn project_changes(&self, colliders: &ColliderSet) -> bool {
-        self.roster.colliders().iter().any(|&handle| {
-            let (Some(written), Some(collider)) = (self.written.get(handle), colliders.get(handle))
-            else {
-                return false;
-            };
-            Settings::of(collider) != written.wrote
-        })
     }
 
     /// `node` itself if it is a collider, and every collider below it.

@@ -415,6 +415,37 @@ impl RuleHooks {
         self.replan = true;
     }
 
+    /// Gives every collider the crate wrote to its project's own settings
+    /// back, as if the rules had never reached it; the next step writes
+    /// them again. Call it before saving a world with serde: a world saved
+    /// with the crate's settings in it would, once loaded, have them read
+    /// as the project's own.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let body = world.insert_body(RigidBodyBuilder::dynamic());
+    /// let ball = world.insert_collider(ColliderBuilder::ball(0.5), Some(body));
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_personal(body, CollisionRule::NoResponse);
+    /// hooks.step(&mut world);
+    /// assert!(!world.colliders[ball].active_hooks().is_empty(), "hooked by the rule");
+    /// hooks.restore_project_settings(&mut world.colliders);
+    /// assert!(world.colliders[ball].active_hooks().is_empty(), "the project set none");
+    /// ```
+    pub fn restore_project_settings(&mut self, colliders: &mut ColliderSet) {
+        for (handle, written) in self.written.iter() {
+            if let Some(collider) = colliders.get_mut(handle) {
+                written.own_as_of(Settings::of(collider)).write(collider);
+            }
+            self.roster.wrote(handle, None);
+        }
+        self.written = HandleMap::default();
+        self.replan = true;
+    }
+
     /// Removes the project's hooks and gives them back.
     pub fn remove_user_hooks(&mut self) -> Option<Box<dyn PhysicsHooks + Send + Sync>> {
         self.user.take()

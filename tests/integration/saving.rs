@@ -105,6 +105,8 @@ fn a_world_saved_with_its_rules_resolves_and_steps_as_before()
     for _ in 0..5 {
         hooks.step(&mut world);
     }
+    // The world is saved with the project's own settings, not the crate's.
+    hooks.restore_project_settings(&mut world.colliders);
     let saved = serde_json::to_string(&(&world, hooks.rules()))?;
     let (mut loaded_world, loaded_rules): (PhysicsWorld, CollisionRuleSet) =
         serde_json::from_str(&saved)?;

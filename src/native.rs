@@ -114,12 +114,26 @@ impl ColliderPlan {
     /// This plan, or the hooked one where it cannot be combined exactly with
     /// the project's settings `own`: a group bit on a collider whose own
     /// groups are narrowed (no single group test says "both allow").
-    fn fitted(self, own: Settings, dynamic: bool) -> ColliderPlan {
+    fn fitted(self, own: Settings, dynamic: bool, rules: &CollisionRuleSet) -> ColliderPlan {
         let narrows = |planned: InteractionGroups, own: InteractionGroups| {
             planned != InteractionGroups::all() && own != InteractionGroups::all()
         };
+        // The kinematic entry gives way to wider project types (see
+        // `CollisionRuleSet::by_kinematic_entry`), pair by pair, which a bit
+        // that keeps DEFAULT_KINEMATIC from itself cannot say.
+        // Nor can Rapier's type test, where the pairs it lets through get a
+        // default rule that refuses them or keeps their contacts out.
+        let default_refuses = !matches!(
+            rules.default_rule(),
+            CollisionRule::Normal | CollisionRule::NoResponse | CollisionRule::Defer
+        );
+        let kinematic = self.class.is_some_and(|c| {
+            c.group == CollisionGroup::DEFAULT_KINEMATIC
+                && (default_refuses || !self.collision.filter.contains(self.collision.memberships))
+        });
+        let typed = !dynamic && own.widened() && kinematic;
         if !self.hooked()
-            && (narrows(self.collision, own.collision) || narrows(self.solver, own.solver))
+            && (narrows(self.collision, own.collision) || narrows(self.solver, own.solver) || typed)
         {
             ColliderPlan::hooked_plan(dynamic)
         } else {
@@ -289,7 +303,7 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
             },
         };
         let own = colliders.get(handle).map(|c| (request.own)(handle, c));
-        let entry = own.map_or(entry, |own| entry.fitted(own, dynamic));
+        let entry = own.map_or(entry, |own| entry.fitted(own, dynamic, rules));
         plan.colliders.insert(handle, entry);
     }
     plan
@@ -416,7 +430,7 @@ pub(crate) fn replan_some(
             }
             Some(class) => *plan.classes.get(&class)?,
         };
-        planned.push((handle, entry.fitted(own, dynamic)));
+        planned.push((handle, entry.fitted(own, dynamic, rules)));
     }
     Some(planned)
 }

@@ -466,8 +466,14 @@ impl CollisionRuleSet {
     }
 
     /// Lets one user of record `id` go; a freed record's entries no longer
-    /// name anyone.
+    /// name anyone. The nodes its entries name lose their entries with that
+    /// user (their side of an entry may no longer be the one to hook): they
+    /// are logged as edited.
     fn release(&mut self, id: RecordId) {
+        let subjects: Vec<Node> = self.records.get(id).specific.keys().copied().collect();
+        for subject in subjects {
+            self.changes.node(subject);
+        }
         if let Some(freed) = self.records.release(id) {
             for other in freed.specific.keys() {
                 self.unname(*other);

@@ -89,8 +89,8 @@ impl RuleHooks {
     /// A tracked pair's rule now. Two things a computed rule rests on can
     /// change without an edit, on colliders the hooks may not watch: a
     /// body's type (the default groups follow it), and the project's
-    /// collision types (a computed `NoPair` between two non-dynamic bodies,
-    /// see [`resolve`](Self::resolve)). Such a pair is decided again.
+    /// collision types (the rule of two non-dynamic bodies, see
+    /// [`resolve`](Self::resolve)). Such a pair is decided again.
     /// Overrides and the `Manual` policy keep their answers.
     pub(super) fn rule_now(
         &self,
@@ -106,11 +106,8 @@ impl RuleHooks {
         }
         let types = body_types(bodies, colliders, a, b);
         let kinds = (types.0.is_dynamic(), types.1.is_dynamic());
-        let typed = rule == CollisionRule::NoPair
-            && !kinds.0
-            && !kinds.1
-            && self.calculator.is_none()
-            && self.on_created.is_none();
+        // Two non-dynamic bodies: the rule may rest on the project's types.
+        let typed = !kinds.0 && !kinds.1 && self.calculator.is_none() && self.on_created.is_none();
         if kinds != state.kinds || typed {
             self.calculate(bodies, colliders, a, b)
         } else {
@@ -189,7 +186,8 @@ impl RuleHooks {
         match self.pairs.get(key) {
             Some(state) => {
                 let kinds = kinds_in(context, key);
-                let typed = state.computed == CollisionRule::NoPair && !kinds.0 && !kinds.1;
+                let typed =
+                    !kinds.0 && !kinds.1 && self.calculator.is_none() && self.on_created.is_none();
                 if (kinds != state.kinds || typed) && self.recomputes(state) {
                     return self.restate(context, key, state, kinds);
                 }

@@ -408,11 +408,16 @@ impl RuleHooks {
     /// rules do not reach. Changes on colliders the rules reach are noticed
     /// by themselves, and so is any collider added or removed; the hooks do
     /// not look at the others every step, which would cost in proportion to
-    /// the world. It matters only while the plan gives groups bits shared
-    /// with the project's settings (`stats().shares_project_bits`): the
-    /// next step reads every collider's settings and plans again.
+    /// the world. It matters while the plan gives groups bits shared with
+    /// the project's settings (`stats().shares_project_bits`), and for the
+    /// collision types of non-dynamic colliders paired with hooked ones: the
+    /// next step reads every collider's settings, plans again and
+    /// recalculates the hooked pairs.
     pub fn project_settings_changed(&mut self) {
         self.replan = true;
+        // The kinematic entry gives way to the project's types: a pair's
+        // rule may follow a type changed on either of its colliders.
+        self.recalculate_all = true;
     }
 
     /// Gives every collider the crate wrote to its project's own settings

@@ -59,9 +59,9 @@ pub(crate) struct Look {
     pub(crate) added: Vec<ColliderHandle>,
     /// Colliders no longer watched: the rules no longer reach them.
     pub(crate) released: Vec<ColliderHandle>,
-    /// A watched collider's settings differ from what the crate wrote: the
-    /// project changed them through Rapier.
-    pub(crate) project_changed: bool,
+    /// Watched colliders whose settings differ from what the crate wrote:
+    /// the project changed them through Rapier.
+    pub(crate) project_changed: Vec<ColliderHandle>,
 }
 
 fn dynamic(bodies: &RigidBodySet, body: Option<RigidBodyHandle>) -> bool {
@@ -230,9 +230,12 @@ impl Roster {
                 look.removed_colliders.push((handle, None));
                 return false;
             };
-            look.project_changed |= known
+            if known
                 .wrote
-                .is_some_and(|wrote| Settings::of(collider) != wrote);
+                .is_some_and(|wrote| Settings::of(collider) != wrote)
+            {
+                look.project_changed.push(handle);
+            }
             let body = collider.parent();
             let is_dynamic = dynamic(bodies, body);
             if known.body != body {

@@ -187,9 +187,12 @@ impl RuleHooks {
             .plan
             .room
             .is_some_and(|(_, count)| count != colliders.len());
-        if recount || look.project_changed {
+        if recount || !look.project_changed.is_empty() {
             self.replan = true;
         }
+        // A project setting can change a pair's rule (the kinematic entry
+        // gives way to wider types): those colliders' pairs are recalculated.
+        changed.extend(look.project_changed.iter().map(|&c| Node::Collider(c)));
 
         // 3. Plan the colliders under every changed node, and those newly
         // watched (a collider moved onto a watched body may have hooked pairs
@@ -382,6 +385,8 @@ impl RuleHooks {
         let touched: HashSet<ColliderHandle> = touched.into_iter().collect();
         let regrouped = std::mem::take(&mut self.regrouped);
         let (mut answered, mut never_ended) = (0, false);
+        let mut retyped = Vec::new();
+        let recomputes = self.policy != RecalculationPolicy::Manual;
         let plan = &self.plan;
         self.pairs.retain(|key, state| {
             let (a, b) = key.colliders();
@@ -420,9 +425,25 @@ impl RuleHooks {
                 filters_pass(bodies, colliders, a, b)
             };
             never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
+            // A body changed type (the hooks may not watch it): the rule
+            // follows the default groups.
+            if keep && recomputes && state.overridden.is_none() {
+                let kinds = kinds_of(bodies, colliders, key);
+                if kinds != state.kinds {
+                    retyped.push((key, kinds));
+                }
+            }
             keep
         });
         self.replan |= never_ended;
+        for (key, kinds) in retyped {
+            let (a, b) = key.colliders();
+            let rule = self.calculate(bodies, colliders, a, b);
+            if let Some(state) = self.pairs.get_mut(key) {
+                state.computed = rule;
+                state.kinds = kinds;
+            }
+        }
         // Pairs kept through their colliders' regrouping are looked up again
         // after the next step: by then Rapier has found them again, or not.
         self.touched.extend(regrouped);
@@ -506,8 +527,20 @@ impl RuleHooks {
             self.rules.remove_node(handle);
             self.plan.colliders.remove(handle);
             self.written.remove(handle);
-            if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
-                self.rules.remove_node(body);
+            match body {
+                Some(body) if !bodies.contains(body) => self.rules.remove_node(body),
+                // A body that holds or is named by specific entries lost a
+                // collider: which side of each entry is cheaper to hook may
+                // have changed.
+                Some(body) => {
+                    let node = Node::Body(body);
+                    let entries = self
+                        .rules
+                        .record(node)
+                        .is_some_and(|r| !r.specific.is_empty());
+                    self.replan |= entries || self.rules.is_named(node);
+                }
+                None => {}
             }
         }
         for &body in removed_bodies {
@@ -647,9 +680,6 @@ impl RuleHooks {
         let dynamic = body.is_some_and(|b| b.is_dynamic());
         let planned_before = self.plan.colliders.get(handle).is_some();
         let before = self.plan.entry(handle, dynamic);
-        if self.policy != RecalculationPolicy::Manual && before != entry {
-            self.to_wake.extend(current.parent());
-        }
         let now = Settings::of(current);
         let own = self.own_settings(handle, current);
         let target = entry.combined(own, self.modifying.contains(&handle));
@@ -669,6 +699,11 @@ impl RuleHooks {
         }
         if target == now {
             return;
+        }
+        // New settings take effect on a sleeping body once it wakes (a pair
+        // whose rule an edit changed wakes its bodies on its own).
+        if self.policy != RecalculationPolicy::Manual && before != entry {
+            self.to_wake.extend(current.parent());
         }
         self.touched.push(handle);
         if now.collision != target.collision || now.solver != target.solver {

@@ -47,7 +47,10 @@ pub const LAYERS: [Group; 5] = [
     Group::ALL.difference(Group::GROUP_1),
 ];
 
-/// Collision types a project may set.
+/// Collision types a project may set. Not every type: the crate gives a
+/// hooked non-dynamic collider every type, and a project value equal to
+/// what the crate wrote is read as no change (`docs/semantics.md`, section
+/// 6), which the planner on and off would then read differently.
 pub const TYPES: [ActiveCollisionTypes; 3] = [
     ActiveCollisionTypes::DYNAMIC_DYNAMIC
         .union(ActiveCollisionTypes::DYNAMIC_KINEMATIC)
@@ -56,7 +59,7 @@ pub const TYPES: [ActiveCollisionTypes; 3] = [
         .union(ActiveCollisionTypes::DYNAMIC_KINEMATIC)
         .union(ActiveCollisionTypes::DYNAMIC_FIXED)
         .union(ActiveCollisionTypes::KINEMATIC_FIXED),
-    ActiveCollisionTypes::all(),
+    ActiveCollisionTypes::all().difference(ActiveCollisionTypes::FIXED_FIXED),
 ];
 
 pub const KINDS: [RigidBodyType; 3] = [
@@ -80,6 +83,9 @@ pub struct Run {
     removed: Vec<ColliderHandle>,
     /// The settings the project gave colliders through Rapier.
     project: HashMap<ColliderHandle, Project>,
+    /// For colliders the project changed since the last step: their
+    /// settings then (what the crate wrote) and the project's then.
+    since_step: HashMap<ColliderHandle, (Project, Project)>,
 }
 
 /// A collider's settings as its project set them.
@@ -128,6 +134,7 @@ impl Run {
             colliders: vec![floor],
             removed: Vec::new(),
             project: HashMap::new(),
+            since_step: HashMap::new(),
         };
         for &(x, y, kind) in cubes {
             run.add_cube(x, y, kind);
@@ -239,33 +246,28 @@ impl Run {
                     self.world.wake_up(handle, true);
                 }
             }
-            // The crate takes a setting the project changes through Rapier
-            // as the project's new one; one that leaves the collider as it
-            // is changes nothing (`docs/semantics.md`, section 6).
+            // The crate takes a setting that differs, at the next step, from
+            // what it wrote as the project's new one; one that comes back to
+            // what the crate wrote changes nothing (`docs/semantics.md`,
+            // section 6). The crate wrote what the collider had when this
+            // run last stepped.
             Edit::ProjectCollision(c, m, f) | Edit::ProjectSolver(c, m, f) => {
                 let handle = self.colliders[c % self.colliders.len()];
                 let groups = InteractionGroups::new(LAYERS[m], LAYERS[f], InteractionTestMode::And);
+                self.remember(handle);
                 if let Some(collider) = self.world.colliders.get_mut(handle) {
-                    let project = self.project.entry(handle).or_default();
                     if matches!(edit, Edit::ProjectCollision(..)) {
-                        if collider.collision_groups() != groups {
-                            project.collision = groups;
-                        }
                         collider.set_collision_groups(groups);
                     } else {
-                        if collider.solver_groups() != groups {
-                            project.solver = groups;
-                        }
                         collider.set_solver_groups(groups);
                     }
                 }
+                self.project_changed(handle);
             }
             Edit::ProjectTypes(c, t) => {
                 let handle = self.colliders[c % self.colliders.len()];
+                self.remember(handle);
                 if let Some(collider) = self.world.colliders.get_mut(handle) {
-                    if collider.active_collision_types() != TYPES[t] {
-                        self.project.entry(handle).or_default().types = TYPES[t];
-                    }
                     collider.set_active_collision_types(TYPES[t]);
                     // Rapier sets no change flag for the types: nudging the
                     // groups makes it look at the collider's pairs again.
@@ -273,6 +275,7 @@ impl Run {
                     collider.set_collision_groups(InteractionGroups::none());
                     collider.set_collision_groups(groups);
                 }
+                self.project_changed(handle);
             }
             Edit::Step(n) => {
                 for _ in 0..n {
@@ -283,6 +286,7 @@ impl Run {
     }
 
     pub fn step(&mut self) {
+        self.since_step.clear();
         self.hooks.step(&mut self.world);
         self.check();
     }
@@ -368,6 +372,46 @@ impl Run {
         touching
     }
 
+    fn settings_of(&self, handle: ColliderHandle) -> Option<Project> {
+        let collider = self.world.colliders.get(handle)?;
+        Some(Project {
+            collision: collider.collision_groups(),
+            solver: collider.solver_groups(),
+            types: collider.active_collision_types(),
+        })
+    }
+
+    /// Before the project's first change of `handle` since the last step:
+    /// its settings then (what the crate wrote) and the project's.
+    fn remember(&mut self, handle: ColliderHandle) {
+        if let Some(stepped) = self.settings_of(handle) {
+            let model = self.project_of(handle);
+            self.since_step.entry(handle).or_insert((stepped, model));
+        }
+    }
+
+    /// Records what the project's settings of `handle` are after it changed
+    /// one through Rapier: a setting that differs from what the collider had
+    /// when this run last stepped is the project's.
+    fn project_changed(&mut self, handle: ColliderHandle) {
+        let (Some(now), Some(&(stepped, model))) =
+            (self.settings_of(handle), self.since_step.get(&handle))
+        else {
+            return;
+        };
+        let mut project = model;
+        if now.collision != stepped.collision {
+            project.collision = now.collision;
+        }
+        if now.solver != stepped.solver {
+            project.solver = now.solver;
+        }
+        if now.types != stepped.types {
+            project.types = now.types;
+        }
+        self.project.insert(handle, project);
+    }
+
     fn project_of(&self, c: ColliderHandle) -> Project {
         self.project.get(&c).copied().unwrap_or_default()
     }
@@ -416,16 +460,20 @@ impl Run {
     /// What decides the pair of `a` and `b`, for assert messages.
     fn describe(&self, a: ColliderHandle, b: ColliderHandle) -> String {
         let (bodies, colliders) = (&self.world.bodies, &self.world.colliders);
+        let groups =
+            |g: InteractionGroups| format!("{:#x}/{:#x}", g.memberships.bits(), g.filter.bits());
         let side = |c: ColliderHandle| {
             let collider = &colliders[c];
             let kind = collider.parent().map(|b| bodies[b].body_type());
+            let project = self.project_of(c);
             format!(
-                "{kind:?}, project {:?}, now types {:?} groups {:?}/{:?} hooks {:?}",
-                self.project_of(c),
-                collider.active_collision_types(),
-                collider.collision_groups().memberships,
-                collider.collision_groups().filter,
-                collider.active_hooks()
+                "{kind:?}, project groups {} solver {} types {:#x}, now groups {} types {:#x} hooks {:#x}",
+                groups(project.collision),
+                groups(project.solver),
+                project.types.bits(),
+                groups(collider.collision_groups()),
+                collider.active_collision_types().bits(),
+                collider.active_hooks().bits()
             )
         };
         format!(

@@ -68,19 +68,24 @@ fn assert_same_poses(plain: &PhysicsWorld, world: &PhysicsWorld, bodies: &[Rigid
     }
 }
 
+/// The project's layers of the layered pile's columns: the player (column
+/// 0) ignores debris (columns 1 and 2), debris ignores debris.
+fn debris_layers() -> [InteractionGroups; 4] {
+    [
+        layer(PLAYER, Group::ALL - DEBRIS),
+        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
+        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
+        InteractionGroups::all(),
+    ]
+}
+
 fn collider_of(world: &PhysicsWorld, body: RigidBodyHandle) -> ColliderHandle {
     world.bodies[body].colliders()[0]
 }
 
 #[test]
 fn project_layers_without_rules_step_bit_for_bit_as_plain_rapier() {
-    // Debris ignores debris, the player ignores debris.
-    let groups = [
-        layer(PLAYER, Group::ALL - DEBRIS),
-        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
-        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
-        InteractionGroups::all(),
-    ];
+    let groups = debris_layers();
     let (mut plain, bodies) = layered_pile(groups);
     let (mut world, _) = layered_pile(groups);
     let mut hooks = RuleHooks::default();
@@ -567,14 +572,8 @@ fn the_project_filter_is_asked_only_for_pairs_the_rules_let_through() {
 
 #[test]
 fn layers_moved_into_the_rules_step_bit_for_bit_as_the_layers() {
-    // Debris ignores debris and the player; column 2 does not respond to
-    // the player (solver groups).
-    let collision = [
-        layer(PLAYER, Group::ALL - DEBRIS),
-        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
-        layer(DEBRIS, Group::ALL - DEBRIS - PLAYER),
-        InteractionGroups::all(),
-    ];
+    // Column 0 does not respond to column 3 (solver groups).
+    let collision = debris_layers();
     let (mut plain, bodies) = layered_pile(collision);
     let solver_of_column = |column: usize| match column {
         0 => layer(PLAYER, Group::ALL),

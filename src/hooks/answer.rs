@@ -115,6 +115,26 @@ impl RuleHooks {
         }
     }
 
+    /// Whether the project's own types of a collider of the pair pair
+    /// non-dynamic bodies, so that the pair's rule may rest on them (see
+    /// [`resolve`](Self::resolve)): the hot path decides such a pair again
+    /// (a pair whose types were narrowed back is recalculated when the
+    /// change is noticed). Other pairs of non-dynamic bodies, a moving
+    /// kinematic platform's with a level's tiles, keep the plain look-up.
+    #[inline]
+    fn widened_pair(&self, context: &PairFilterContext<'_>) -> bool {
+        if self.calculator.is_some() || self.on_created.is_some() {
+            return false;
+        }
+        let widened = |c: ColliderHandle| {
+            context
+                .colliders
+                .get(c)
+                .is_some_and(|collider| self.own_settings(c, collider).widened())
+        };
+        widened(context.collider1) || widened(context.collider2)
+    }
+
     /// Whether a tracked pair's rule follows what it rests on (see
     /// [`rule_now`](Self::rule_now)).
     fn recomputes(&self, state: &PairState) -> bool {
@@ -186,8 +206,7 @@ impl RuleHooks {
         match self.pairs.get(key) {
             Some(state) => {
                 let kinds = kinds_in(context, key);
-                let typed =
-                    !kinds.0 && !kinds.1 && self.calculator.is_none() && self.on_created.is_none();
+                let typed = !kinds.0 && !kinds.1 && self.widened_pair(context);
                 if (kinds != state.kinds || typed) && self.recomputes(state) {
                     return self.restate(context, key, state, kinds);
                 }

@@ -182,16 +182,32 @@ fn group_rules_fall_back_to_the_hook_where_project_layers_take_the_bits() {
     assert_same_poses(&plain, &world, &bodies);
 }
 
+/// A cube resting on the floor and one dropped on it from 3 m: the scene,
+/// the lower collider, the upper body and collider.
+fn stacked() -> (Scene, ColliderHandle, (RigidBodyHandle, ColliderHandle)) {
+    let mut scene = Scene::new();
+    let (_, lower) = scene.cube(0.0, 0.5);
+    let upper = scene.cube(0.0, 3.0);
+    (scene, lower, upper)
+}
+
+/// Layers that keep debris (the lower cube) and the player (the upper
+/// one) apart.
+fn apart() -> [InteractionGroups; 2] {
+    [
+        layer(DEBRIS, Group::ALL - PLAYER),
+        layer(PLAYER, Group::ALL - DEBRIS),
+    ]
+}
+
 /// A cube dropped on another; the project's groups and one rule between
 /// them. Returns the upper cube's height after a second.
 fn dropped(project_excludes: bool, rule: Option<(CollisionRule, bool)>) -> f32 {
-    let mut scene = Scene::new();
-    let (_, lower) = scene.cube(0.0, 0.5);
-    let (upper_body, upper) = scene.cube(0.0, 3.0);
+    let (mut scene, lower, (upper_body, upper)) = stacked();
     if project_excludes {
-        let world = &mut scene.world;
-        world.colliders[lower].set_collision_groups(layer(DEBRIS, Group::ALL - PLAYER));
-        world.colliders[upper].set_collision_groups(layer(PLAYER, Group::ALL - DEBRIS));
+        let [l, u] = apart();
+        scene.world.colliders[lower].set_collision_groups(l);
+        scene.world.colliders[upper].set_collision_groups(u);
     }
     let mut hooks = RuleHooks::default();
     if let Some((rule, upper_names)) = rule {
@@ -238,13 +254,11 @@ fn project_solver_groups_and_a_per_pair_no_response_both_drop_the_response() {
         (true, Some(Normal)),
         (false, Some(NoResponse)),
     ] {
-        let mut scene = Scene::new();
-        let (_, lower) = scene.cube(0.0, 0.5);
-        let (upper_body, upper) = scene.cube(0.0, 3.0);
+        let (mut scene, lower, (upper_body, upper)) = stacked();
         if solver_excludes {
-            let world = &mut scene.world;
-            world.colliders[lower].set_solver_groups(layer(DEBRIS, Group::ALL - PLAYER));
-            world.colliders[upper].set_solver_groups(layer(PLAYER, Group::ALL - DEBRIS));
+            let [l, u] = apart();
+            scene.world.colliders[lower].set_solver_groups(l);
+            scene.world.colliders[upper].set_solver_groups(u);
         }
         let mut hooks = RuleHooks::default();
         if let Some(rule) = rule {

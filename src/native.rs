@@ -123,10 +123,7 @@ impl ColliderPlan {
         // that keeps DEFAULT_KINEMATIC from itself cannot say.
         // Nor can Rapier's type test, where the pairs it lets through get a
         // default rule that refuses them or keeps their contacts out.
-        let default_refuses = !matches!(
-            rules.default_rule(),
-            CollisionRule::Normal | CollisionRule::NoResponse | CollisionRule::Defer
-        );
+        let default_refuses = default_refuses(rules);
         let kinematic = self.class.is_some_and(|c| {
             c.group == CollisionGroup::DEFAULT_KINEMATIC
                 && (default_refuses || !self.collision.filter.contains(self.collision.memberships))
@@ -265,9 +262,11 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
         plan.room = Some((room, colliders.len()));
         settings = GroupSettings::new(rules, classes.iter().filter_map(|c| c.1), room);
     }
-    plan.full = settings
-        .reaches_defaults()
-        .then_some(FullPass::DefaultGroups);
+    // A collider no rule names may carry project types that pair
+    // non-dynamic bodies, where the kinematic entry gives way to a default
+    // rule Rapier's type test cannot say: every collider is looked at.
+    plan.full =
+        (settings.reaches_defaults() || default_refuses(rules)).then_some(FullPass::DefaultGroups);
     if plan.full.is_some() {
         classes = colliders.iter().filter_map(|(h, _)| class_of(h)).collect();
     }
@@ -368,6 +367,17 @@ fn carriers(
         }
     }
     added
+}
+
+/// Whether the default rule refuses a pair or keeps its contacts out: what
+/// pairs of non-dynamic bodies get where the project's types let Rapier
+/// see them (see `CollisionRuleSet::by_kinematic_entry`), which Rapier's
+/// own handling of such pairs (contacts, no response) does not say.
+fn default_refuses(rules: &CollisionRuleSet) -> bool {
+    !matches!(
+        rules.default_rule(),
+        CollisionRule::Normal | CollisionRule::NoResponse | CollisionRule::Defer
+    )
 }
 
 /// A total order on nodes, for deterministic iteration.

@@ -109,6 +109,8 @@ impl Records {
 pub(crate) struct Changes {
     /// An edit that can affect any pair (the group table, the default rule).
     pub(crate) everything: bool,
+    /// A link of the parent map changed: the colliders under a node changed.
+    pub(crate) parents: bool,
     records: Vec<RecordId>,
     nodes: Vec<Node>,
 }
@@ -490,6 +492,11 @@ impl CollisionRuleSet {
         }
     }
 
+    /// Whether the rule set holds any specific entry.
+    pub(crate) fn has_specific(&self) -> bool {
+        !self.named.is_empty()
+    }
+
     /// Whether any specific entry names `node`.
     pub(crate) fn is_named(&self, node: Node) -> bool {
         self.named.contains_key(&node)
@@ -517,8 +524,12 @@ impl CollisionRuleSet {
     /// Logs an edit of `node`'s rules (and so of every node sharing its record).
     fn touch(&mut self, node: Node) {
         self.changes.node(node);
+        // A record shared now: its other users are looked up when the log
+        // is read, even if some of them have left it by then.
         if let Some(id) = self.record_id(node) {
-            self.changes.record(id);
+            if self.records.get(id).users > 1 {
+                self.changes.record(id);
+            }
         }
     }
 
@@ -796,8 +807,14 @@ impl CollisionRuleSet {
         child: RigidBodyHandle,
         parent: RigidBodyHandle,
     ) -> Result<(), RuleError> {
+        let former = self.hierarchy.parent(child);
         self.hierarchy.set_parent(child, parent)?;
+        self.changes.parents = true;
         self.changes.node(Node::Body(child));
+        // The former parent lost the colliders under `child`.
+        if let Some(former) = former.filter(|&f| f != parent) {
+            self.changes.node(Node::Body(former));
+        }
         // Logged too, so that a parent already removed is noticed.
         self.changes.node(Node::Body(parent));
         Ok(())
@@ -806,7 +823,9 @@ impl CollisionRuleSet {
     /// Makes `child` a root again; returns its former parent.
     pub fn remove_parent(&mut self, child: RigidBodyHandle) -> Option<RigidBodyHandle> {
         let parent = self.hierarchy.remove_parent(child)?;
+        self.changes.parents = true;
         self.changes.node(Node::Body(child));
+        self.changes.node(Node::Body(parent));
         Some(parent)
     }
 
@@ -922,15 +941,10 @@ impl CollisionRuleSet {
             return None;
         }
         let mut nodes = changes.nodes.clone();
-        // A record with one user is only that user's, which the log holds:
-        // only a shared record sends us looking for its other users.
-        let shared = changes.records.iter().any(|&id| {
-            self.records
-                .slots
-                .get(id.0 as usize)
-                .is_some_and(|r| r.as_ref().is_some_and(|r| r.users > 1))
-        });
-        if shared {
+        // Only records shared when they were edited are logged (a record
+        // with one user is only that user's, which the log holds): they
+        // send us looking for their users.
+        if !changes.records.is_empty() {
             nodes.extend(self.nodes().filter(|&node| {
                 self.record_id(node)
                     .is_some_and(|id| changes.records.contains(&id))

@@ -17,7 +17,9 @@ pub enum FullPass {
     PlannerOff,
     /// A rule reaches the default groups: a table entry on
     /// `DEFAULT_DYNAMIC` or `DEFAULT_KINEMATIC` (other than the built-in
-    /// kinematic entry), or a default rule other than `Normal`, so colliders
+    /// kinematic entry), or a default rule that refuses pairs or keeps their
+    /// contacts out (`NoPair`, `NoContacts`: what pairs of non-dynamic
+    /// bodies get where a project's collision types pair them), so colliders
     /// no other rule names still need settings of their own.
     DefaultGroups,
 }

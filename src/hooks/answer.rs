@@ -119,8 +119,10 @@ impl RuleHooks {
     /// non-dynamic bodies, so that the pair's rule may rest on them (see
     /// [`resolve`](Self::resolve)): the hot path decides such a pair again
     /// (a pair whose types were narrowed back is recalculated when the
-    /// change is noticed). Other pairs of non-dynamic bodies, a moving
-    /// kinematic platform's with a level's tiles, keep the plain look-up.
+    /// change is noticed, or by the hot path if the project narrowed them
+    /// on a collider the hooks do not watch). Other pairs of non-dynamic
+    /// bodies that the rules refuse, a moving kinematic platform's with a
+    /// level's tiles, keep the plain look-up.
     #[inline]
     fn widened_pair(&self, context: &PairFilterContext<'_>) -> bool {
         if self.calculator.is_some() || self.on_created.is_some() {
@@ -206,7 +208,12 @@ impl RuleHooks {
         match self.pairs.get(key) {
             Some(state) => {
                 let kinds = kinds_in(context, key);
-                let typed = !kinds.0 && !kinds.1 && self.widened_pair(context);
+                // A pair of non-dynamic bodies that is not refused may owe
+                // its rule to types the project has narrowed since, on a
+                // collider the hooks do not watch: decided again too.
+                let typed = !kinds.0
+                    && !kinds.1
+                    && (state.computed != CollisionRule::NoPair || self.widened_pair(context));
                 if (kinds != state.kinds || typed) && self.recomputes(state) {
                     return self.restate(context, key, state, kinds);
                 }

@@ -44,6 +44,9 @@ pub(crate) struct Roster {
     /// Each watched body as of the last look.
     bodies: HandleMap<RigidBodyHandle, KnownBody>,
     body_list: Vec<RigidBodyHandle>,
+    /// Watched colliders whose slot a newer collider took before the look
+    /// that finds them removed, with the body each was on.
+    evicted: Vec<(ColliderHandle, Option<RigidBodyHandle>)>,
 }
 
 /// What one look found.
@@ -57,6 +60,8 @@ pub(crate) struct Look {
     pub(crate) changed: Vec<Node>,
     /// Colliders seen for the first time.
     pub(crate) added: Vec<ColliderHandle>,
+    /// Bodies that lost a watched collider (removed or moved away).
+    pub(crate) left: Vec<RigidBodyHandle>,
     /// Colliders no longer watched: the rules no longer reach them.
     pub(crate) released: Vec<ColliderHandle>,
     /// Watched colliders whose settings differ from what the crate wrote:
@@ -106,8 +111,10 @@ impl Roster {
             marked: false,
         };
         // A watched collider in a reused slot stays in the list: the next
-        // look finds it removed.
-        self.colliders.insert_evicting(collider, known);
+        // look finds it removed, and its body lost a collider.
+        if let Some((old, known)) = self.colliders.insert_evicting(collider, known) {
+            self.evicted.push((old, known.body));
+        }
         self.collider_list.push(collider);
         true
     }
@@ -219,15 +226,21 @@ impl Roster {
         let mut recheck = Vec::new();
         let mut list = std::mem::take(&mut self.collider_list);
         list.retain(|&handle| {
-            let Some(collider) = colliders.get(handle) else {
-                let known = self.colliders.remove(handle);
-                let body = known.and_then(|k| k.body);
+            // Gone from Rapier, or from our map: evicted by a newer collider
+            // in its slot (see `watch_collider`).
+            let (Some(collider), Some(known)) =
+                (colliders.get(handle), self.colliders.get_mut(handle))
+            else {
+                let body = match self.colliders.remove(handle) {
+                    Some(known) => known.body,
+                    None => self
+                        .evicted
+                        .iter()
+                        .find(|e| e.0 == handle)
+                        .and_then(|e| e.1),
+                };
                 recheck.extend(body);
                 look.removed_colliders.push((handle, body));
-                return false;
-            };
-            let Some(known) = self.colliders.get_mut(handle) else {
-                look.removed_colliders.push((handle, None));
                 return false;
             };
             if known
@@ -256,6 +269,8 @@ impl Roster {
             }
         });
         self.collider_list = list;
+        self.evicted.clear();
+        look.left.clone_from(&recheck);
         for handle in recheck {
             let (Some(body), Some(known)) = (bodies.get(handle), self.bodies.get_mut(handle))
             else {

@@ -80,15 +80,6 @@ pub(super) fn partners_of(
         )
 }
 
-/// Whether the body of `collider` may move during a step.
-fn awake(bodies: &RigidBodySet, colliders: &ColliderSet, collider: ColliderHandle) -> bool {
-    colliders
-        .get(collider)
-        .and_then(|c| c.parent())
-        .and_then(|b| bodies.get(b))
-        .is_some_and(|b| !b.is_fixed() && !b.is_sleeping())
-}
-
 /// Stepping.
 impl RuleHooks {
     /// Steps `world` with the rules: [`prepare`](Self::prepare), waking what
@@ -109,8 +100,10 @@ impl RuleHooks {
         self.prepare(&world.bodies, &mut world.colliders);
         self.freeze_manifolds(&world.narrow_phase);
         self.wake_edited(&mut world.islands, &mut world.bodies);
-        let resting = world.islands.num_active_bodies() == 0;
+        let counts = (world.colliders.len(), world.bodies.len());
+        let resting = world.islands.num_active_bodies() == 0 && counts == self.counts;
         world.step_with_events(&*self, events);
+        self.counts = (world.colliders.len(), world.bodies.len());
         let quiet = resting && world.islands.num_active_bodies() == 0;
         self.finish_step(&world.narrow_phase, &world.bodies, &world.colliders, quiet);
     }
@@ -141,6 +134,9 @@ impl RuleHooks {
 
         // 1. What the edits touched starts being watched.
         let changes = self.rules.take_changes();
+        // Re-parenting moves colliders from under one side of a specific
+        // entry to another: which side is cheaper to hook may change.
+        self.replan |= changes.parents && self.rules.has_specific();
         let mut changed = match self.rules.touched_nodes(&changes) {
             // The first step reads the whole rule set: it may have been
             // built, or loaded, before the hooks existed.
@@ -170,9 +166,22 @@ impl RuleHooks {
                     reached(rules, plan, bodies, colliders, node)
                 })
         };
+        // Which side of a specific entry is cheaper to hook follows the
+        // colliders under each side and their bodies' types (asked before
+        // removed bodies leave the parent map).
+        self.replan |= look
+            .left
+            .iter()
+            .map(|&b| Node::Body(b))
+            .chain(look.added.iter().map(|&c| Node::Collider(c)))
+            .chain(look.changed.iter().copied())
+            .any(|node| self.under_entry_side(bodies, colliders, node));
         self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
         for &c in &look.released {
             self.plan.colliders.remove(c);
+        }
+        if !(look.removed_colliders.is_empty() && look.released.is_empty()) {
+            self.count_hooked();
         }
         changed.extend(look.changed);
         // Forgetting a removed parent changes its children's chains.
@@ -303,7 +312,8 @@ impl RuleHooks {
     }
 
     /// [`after_step`](Self::after_step); `quiet` when no body was awake
-    /// before or after the step, so that no pair can have ended unless
+    /// before or after the step and the world holds as many colliders and
+    /// bodies as after the last one, so that no pair can have ended unless
     /// something was changed before it.
     fn finish_step(
         &mut self,
@@ -377,10 +387,11 @@ impl RuleHooks {
                 .insert(key, PairState::new(rule, self.step, kinds));
         }
 
-        // Forget the hooked pairs Rapier no longer has. A pair whose bodies
-        // rest (asleep or fixed, and not changed before the step) cannot have
-        // ended: Rapier skips it. Any other is looked up in Rapier's graph,
-        // where the broad phase may have dropped it during the step.
+        // Forget the hooked pairs Rapier no longer has, looked up in Rapier's
+        // graph: the broad phase may have dropped a pair during the step, and
+        // even a pair of resting bodies ends when the project moves or
+        // re-parents a collider through Rapier, which the hooks do not watch
+        // unless the rules reach it.
         let step = self.step;
         let touched: HashSet<ColliderHandle> = touched.into_iter().collect();
         let regrouped = std::mem::take(&mut self.regrouped);
@@ -403,12 +414,7 @@ impl RuleHooks {
                 state.absent =
                     !(pair_exists(narrow_phase, a, b) && filters_pass(bodies, colliders, a, b));
                 true
-            } else if state.answered_in(step)
-                || awake(bodies, colliders, a)
-                || awake(bodies, colliders, b)
-                || touched.contains(&a)
-                || touched.contains(&b)
-            {
+            } else {
                 answered += usize::from(state.answered_in(step));
                 // From the hooked side, whose pairs are few (Rapier walks
                 // the first collider's pairs).
@@ -418,11 +424,6 @@ impl RuleHooks {
                     pair_exists(narrow_phase, b, a)
                 };
                 exists && filters_pass(bodies, colliders, a, b)
-            } else {
-                // Resting, so Rapier still holds it; but the project may have
-                // changed a setting of a collider the hooks do not watch,
-                // which Rapier's filters now stop.
-                filters_pass(bodies, colliders, a, b)
             };
             never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
             // A body changed type (the hooks may not watch it): the rule
@@ -527,20 +528,9 @@ impl RuleHooks {
             self.rules.remove_node(handle);
             self.plan.colliders.remove(handle);
             self.written.remove(handle);
-            match body {
-                Some(body) if !bodies.contains(body) => self.rules.remove_node(body),
-                // A body that holds or is named by specific entries lost a
-                // collider: which side of each entry is cheaper to hook may
-                // have changed.
-                Some(body) => {
-                    let node = Node::Body(body);
-                    let entries = self
-                        .rules
-                        .record(node)
-                        .is_some_and(|r| !r.specific.is_empty());
-                    self.replan |= entries || self.rules.is_named(node);
-                }
-                None => {}
+            // A body that keeps other colliders is in the look's `left`.
+            if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
+                self.rules.remove_node(body);
             }
         }
         for &body in removed_bodies {
@@ -723,6 +713,20 @@ impl RuleHooks {
         target.write(collider);
     }
 
+    /// Whether `node` or a node above it holds or is named by a specific
+    /// entry: then its colliders count in which side of the entry is hooked.
+    fn under_entry_side(&self, bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) -> bool {
+        let mut current = Some(node);
+        while let Some(n) = current {
+            let holds = self.rules.record(n).is_some_and(|r| !r.specific.is_empty());
+            if holds || self.rules.is_named(n) {
+                return true;
+            }
+            current = self.rules.hierarchy.next(bodies, colliders, n);
+        }
+        false
+    }
+
     /// `node` itself if it is a collider, and every collider below it.
     pub(super) fn colliders_under(
         &self,
@@ -749,6 +753,11 @@ impl RuleHooks {
         let mut updates = Vec::new();
         for (key, _) in self.pairs.iter() {
             let (a, b) = key.colliders();
+            // Rapier removed one of them (unwatched): the pair is forgotten
+            // after the step and has nothing to wake.
+            if !colliders.contains(a) || !colliders.contains(b) {
+                continue;
+            }
             let force = forced.contains(&a) || forced.contains(&b);
             if force || everything || affected.contains(&a) || affected.contains(&b) {
                 updates.push((key, self.calculate(bodies, colliders, a, b), force));
@@ -761,12 +770,18 @@ impl RuleHooks {
                 .get_mut(key)
                 .expect("the key came from the table");
             let before = state.rule();
+            let kinds = kinds_of(bodies, colliders, key);
+            // A body changed type since the pair was calculated: Rapier looks
+            // at its colliders' pairs again by itself and wakes it as
+            // `set_body_type` was told, so the new rule needs neither a nudge
+            // nor a wake-up (`docs/semantics.md`, section 5).
+            let retyped = kinds != state.kinds;
             state.computed = computed;
-            state.kinds = kinds_of(bodies, colliders, key);
+            state.kinds = kinds;
             if force {
                 state.overridden = None;
             }
-            if state.rule() != before {
+            if state.rule() != before && !retyped {
                 let (a, b) = key.colliders();
                 self.wake_pair(a, b);
                 // Fixed bodies never wake: Rapier looks at their pair again

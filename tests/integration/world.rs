@@ -263,6 +263,7 @@ impl Run {
                     }
                 }
                 self.project_changed(handle);
+                self.settings_changed();
             }
             Edit::ProjectTypes(c, t) => {
                 let handle = self.colliders[c % self.colliders.len()];
@@ -276,6 +277,7 @@ impl Run {
                     collider.set_collision_groups(groups);
                 }
                 self.project_changed(handle);
+                self.settings_changed();
             }
             Edit::Step(n) => {
                 for _ in 0..n {
@@ -317,23 +319,6 @@ impl Run {
             .collect();
         known.sort();
         known
-    }
-
-    /// The rules `pair_rule` gives the pairs of `pairs`, in their order.
-    pub fn known_among(
-        &self,
-        pairs: &[(Raw, Raw, CollisionRule)],
-    ) -> Vec<(Raw, Raw, CollisionRule)> {
-        pairs
-            .iter()
-            .filter_map(|&(a, b, _)| {
-                let (ca, cb) = (
-                    ColliderHandle::from_raw_parts(a.0, a.1),
-                    ColliderHandle::from_raw_parts(b.0, b.1),
-                );
-                self.hooks.pair_rule(ca, cb).map(|rule| (a, b, rule))
-            })
-            .collect()
     }
 
     /// Every body's position, bit for bit, in handle order.
@@ -410,6 +395,16 @@ impl Run {
             project.types = now.types;
         }
         self.project.insert(handle, project);
+    }
+
+    /// What a project is told to do after changing settings through
+    /// Rapier while the plan shares group bits with them
+    /// (`docs/semantics.md`, section 6): the hooks do not look at colliders
+    /// the rules do not reach.
+    fn settings_changed(&mut self) {
+        if self.hooks.stats().shares_project_bits {
+            self.hooks.project_settings_changed();
+        }
     }
 
     fn project_of(&self, c: ColliderHandle) -> Project {

@@ -73,8 +73,8 @@ mod bounded {
 
     proptest! {
         #![proptest_config(Config {
-            cases: 300,
-            rng_seed: RngSeed::Fixed(0xf022_ed17),
+            cases: crate::world::env_or("DRIVER_CASES", 300, |v| v.parse().ok()),
+            rng_seed: RngSeed::Fixed(crate::world::env_or("DRIVER_SEED", 0xf022_ed17, |v| u64::from_str_radix(v, 16).ok())),
             failure_persistence: None,
             ..Config::default()
         })]

@@ -15,7 +15,7 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError};
 use rapier_collision_rules::CollisionRule;
 
-use crate::world::{Edit, GROUPS, KINDS, LAYERS, Raw, Run, TYPES};
+use crate::world::{Edit, GROUPS, KINDS, LAYERS, Raw, Run, TYPES, env_or};
 
 fn rule() -> impl Strategy<Value = CollisionRule> {
     proptest::sample::select(CollisionRule::ALL.to_vec())
@@ -134,15 +134,6 @@ fn live_in_both(a: &Run, b: &Run) -> (Vec<Live>, Vec<Live>) {
         .filter(|&(x, y, _)| a_keys.contains(&(x, y)))
         .collect();
     (a_live, b_live)
-}
-
-/// The value of the environment variable `name` read by `parse`, else
-/// `default`.
-fn env_or<T>(name: &str, default: T, parse: impl Fn(&str) -> Option<T>) -> T {
-    std::env::var(name)
-        .ok()
-        .and_then(|v| parse(&v))
-        .unwrap_or(default)
 }
 
 /// Applies `edits` (and two last steps) to both runs, and `compare`s them

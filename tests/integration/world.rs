@@ -540,3 +540,12 @@ impl Run {
         }
     }
 }
+
+/// The value of the environment variable `name` read by `parse`, else
+/// `default`.
+pub fn env_or<T>(name: &str, default: T, parse: impl Fn(&str) -> Option<T>) -> T {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| parse(&v))
+        .unwrap_or(default)
+}

@@ -42,7 +42,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
         hooks.step(&mut world);
-        through_first |= hooks.pair_rule(body, first) == Some(CollisionRule::NoResponse);
+        through_first |= hooks.pair_rule_in(&world, body, first) == Some(CollisionRule::NoResponse);
     }
     let x = world.bodies[runner].translation().x;
     println!("the runner crossed the first wall and stopped at the second: x = {x:.2}");

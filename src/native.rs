@@ -13,7 +13,10 @@
 //! a hooked collider on the other side: then the specific and personal
 //! stages defer, every step of the group stage compares the same two groups,
 //! and the rule is `table[g1, g2]`, else the default, then the special case
-//! of `docs/semantics.md`. A pair with a hooked collider is decided by the
+//! of `docs/semantics.md`. A collider of a dynamic body whose chain's
+//! personal rules all say one `Normal`, `NoResponse` or `NoPair` is native
+//! too, where Rapier's test gives its pairs that rule (see
+//! [`personal_natives`]). A pair with a hooked collider is decided by the
 //! hook, so hooked colliders carry permissive groups and pass every native
 //! test.
 //!
@@ -184,6 +187,13 @@ pub(crate) struct Plan {
     /// plan gives no group a bit and relies on no collision type, so that
     /// no project setting can conflict with it.
     pub(crate) room: Option<(Room, usize)>,
+    /// Some collider is native by a personal `NoPair` or `NoResponse`,
+    /// which a personal rule elsewhere can make inexact: a collider whose
+    /// chain has a personal rule is then planned with everything.
+    personal_restricts: bool,
+    /// The settings of a collider native by a personal `Normal`, if such a
+    /// collider can be native under this plan's group bits.
+    personal_normal: Option<ColliderPlan>,
 }
 
 impl Plan {
@@ -271,10 +281,19 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
         classes = colliders.iter().filter_map(|(h, _)| class_of(h)).collect();
     }
 
+    // Dynamic colliders whose chains say one personal rule (see
+    // `personal_rule`) are native where Rapier's test gives each of their
+    // pairs the rule the personal stage gives it.
+    let personal = personal_natives(request, &classes);
+    plan.personal_restricts = personal.values().any(|&r| r != CollisionRule::Normal);
+    plan.personal_normal = settings.personal_entry(CollisionRule::Normal);
+
     // Hooked by their own chains or groups.
     let mut hooked: HashSet<ColliderHandle> = classes
         .iter()
-        .filter(|(_, class, _)| class.is_none_or(|c| settings.entry(c).is_none()))
+        .filter(|(h, class, _)| {
+            class.is_none_or(|c| settings.entry(c).is_none()) && !personal.contains_key(h)
+        })
         .map(|&(h, _, _)| h)
         .collect();
     plan.carriers = carriers(request, &mut hooked);
@@ -291,7 +310,11 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
     classes.extend(extra.into_iter().filter_map(class_of));
 
     for (handle, class, dynamic) in classes {
+        let personal_entry = || settings.personal_entry(*personal.get(&handle)?);
         let entry = match class.filter(|_| !hooked.contains(&handle)) {
+            None if !hooked.contains(&handle) => {
+                personal_entry().unwrap_or_else(|| ColliderPlan::hooked_plan(dynamic))
+            }
             None => ColliderPlan::hooked_plan(dynamic),
             Some(class) => match settings.entry(class) {
                 Some(entry) => {
@@ -422,6 +445,16 @@ pub(crate) fn replan_some(
         if pinned.contains(&handle) || touches_entries(rules, bodies, colliders, handle) {
             return None;
         }
+        // A personal rule: native by `Normal` as the plan has it; any other
+        // native personal rule depends on every collider's personal rules.
+        let personal = first_personal(rules, bodies, colliders, handle)
+            .map(|_| personal_rule(rules, bodies, colliders, handle).map(|(rule, _)| rule));
+        let restricts = personal
+            .flatten()
+            .is_some_and(|r| r != CollisionRule::Normal);
+        if personal.is_some() && (plan.personal_restricts || restricts) {
+            return None;
+        }
         let own = (request.own)(handle, collider);
         if plan.room.is_some_and(|(room, _)| !room.holds(own)) {
             // Its settings take bits or types the plan gave away: look again.
@@ -429,6 +462,9 @@ pub(crate) fn replan_some(
         }
         let dynamic = is_dynamic(bodies, collider);
         let entry = match native_class(rules, bodies, colliders, handle, dynamic) {
+            None if dynamic && personal.flatten() == Some(CollisionRule::Normal) => plan
+                .personal_normal
+                .unwrap_or_else(|| ColliderPlan::hooked_plan(dynamic)),
             None => ColliderPlan::hooked_plan(dynamic),
             Some(class) if class == Class::unreached(dynamic) => {
                 match plan.classes.get(&class) {
@@ -495,6 +531,110 @@ fn native_class(
     group.map(|group| Class { group, dynamic })
 }
 
+/// The first decided personal rule up the chain of `leaf`, and its depth
+/// (0 for the collider itself).
+fn first_personal(
+    rules: &CollisionRuleSet,
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    leaf: ColliderHandle,
+) -> Option<(CollisionRule, usize)> {
+    let mut node = Some(Node::Collider(leaf));
+    let mut depth = 0;
+    while let Some(current) = node {
+        let personal = rules.record(current).map(|r| r.personal);
+        if let Some(rule) = personal.filter(|r| r.is_decided()) {
+            return Some((rule, depth));
+        }
+        node = rules.hierarchy.next(bodies, colliders, current);
+        depth += 1;
+    }
+    None
+}
+
+/// The rule of `leaf`'s chain at the personal stage when every personal
+/// rule of the chain says the same `Normal`, `NoResponse` or `NoPair`, with
+/// the depth of the first.
+fn personal_rule(
+    rules: &CollisionRuleSet,
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    leaf: ColliderHandle,
+) -> Option<(CollisionRule, usize)> {
+    let (rule, depth) = first_personal(rules, bodies, colliders, leaf)?;
+    let native = matches!(
+        rule,
+        CollisionRule::Normal | CollisionRule::NoResponse | CollisionRule::NoPair
+    );
+    let mut node = Some(Node::Collider(leaf));
+    while let Some(current) = node {
+        let personal = rules.record(current).map(|r| r.personal);
+        if personal.is_some_and(|r| r.is_decided() && r != rule) {
+            return None;
+        }
+        node = rules.hierarchy.next(bodies, colliders, current);
+    }
+    native.then_some((rule, depth))
+}
+
+/// The dynamic colliders of `classes` (hooked by their chains) that can be
+/// native by their personal rule, with that rule.
+///
+/// The personal stage compares the two chains step by step: a collider `c`
+/// whose chain says one rule `r` from depth `d` up gets `r` with every
+/// collider whose first personal rule is deeper, the more restrictive of the
+/// two with one at depth `d`, and the other's rule with one shallower.
+/// Rapier's test gives `c` and a native other side the more restrictive of
+/// their two encodings, and lets a hooked side restrict further. So `c` is
+/// exact unless some collider whose first personal rule is shallower than
+/// `d` says a less restrictive rule than `r` (then `c` is hooked), and
+/// unless a specific entry or a pinned pair may reach its pairs and `r`
+/// keeps the pair from the hook (`NoPair`, `NoResponse`). Every collider
+/// with a personal rule is reached, so `classes` holds them all.
+fn personal_natives(
+    request: &Request<'_>,
+    classes: &[(ColliderHandle, Option<Class>, bool)],
+) -> HashMap<ColliderHandle, CollisionRule> {
+    let Request {
+        rules,
+        bodies,
+        colliders,
+        ..
+    } = *request;
+    let firsts: Vec<(CollisionRule, usize)> = classes
+        .iter()
+        .filter(|(_, class, _)| class.is_none())
+        .filter_map(|&(h, _, _)| first_personal(rules, bodies, colliders, h))
+        .collect();
+    let pinned: HashSet<ColliderHandle> = request
+        .pinned
+        .iter()
+        .flat_map(|k| {
+            let (a, b) = k.colliders();
+            [a, b]
+        })
+        .collect();
+    let mut natives = HashMap::new();
+    for &(handle, class, dynamic) in classes {
+        if class.is_some() || !dynamic {
+            continue;
+        }
+        let Some((rule, depth)) = personal_rule(rules, bodies, colliders, handle) else {
+            continue;
+        };
+        if rule != CollisionRule::Normal {
+            let overridden = firsts.iter().any(|&(r, d)| d < depth && r < rule);
+            let reached_by_entries =
+                pinned.contains(&handle) || touches_entries(rules, bodies, colliders, handle);
+            if overridden || reached_by_entries {
+                continue;
+            }
+        }
+        natives.insert(handle, rule);
+    }
+    natives
+}
+
 /// The group-level half of a plan: which groups get a bit, the filters of
 /// each, which take every collision type, and which need the hook.
 struct GroupSettings {
@@ -507,6 +647,8 @@ struct GroupSettings {
     filters: HashMap<CollisionGroup, (Group, Group)>,
     /// A `NoPair` relation is left to Rapier's default collision types.
     relies_on_types: bool,
+    /// The bits the project's settings leave to the planner.
+    room: Group,
 }
 
 impl GroupSettings {
@@ -642,7 +784,48 @@ impl GroupSettings {
             needs_hook,
             static_types,
             filters,
+            room: room.bits(),
         }
+    }
+
+    /// The plan of a dynamic collider whose chain's personal rules all say
+    /// `rule` (see [`personal_rule`]): every pair it has with a native
+    /// collider gets `rule`, whatever the groups say. Its membership is
+    /// every bit no group was given, which every group's filter holds, and
+    /// its filters say `rule`: none for `NoPair` (collision groups),
+    /// none for `NoResponse` (solver groups). `None` when no such bit is
+    /// left in the room.
+    fn personal_entry(&self, rule: CollisionRule) -> Option<ColliderPlan> {
+        let given = self.bits.values().fold(Group::empty(), |g, &bit| {
+            g | Group::from_bits_retain(1 << bit)
+        });
+        let membership = if given.is_empty() {
+            Group::ALL
+        } else if (self.room - given).is_empty() {
+            return None;
+        } else {
+            Group::ALL - given
+        };
+        let groups = |filter: Group| {
+            if membership == Group::ALL && filter == Group::ALL {
+                InteractionGroups::all()
+            } else {
+                InteractionGroups::new(membership, filter, InteractionTestMode::And)
+            }
+        };
+        let (collision, solver) = match rule {
+            CollisionRule::NoPair => (Group::NONE, Group::ALL),
+            CollisionRule::NoResponse => (Group::ALL, Group::NONE),
+            _ => (Group::ALL, Group::ALL),
+        };
+        // Its group takes no part in its pairs: the class only marks it
+        // native.
+        Some(ColliderPlan {
+            class: Some(Class::unreached(true)),
+            collision: groups(collision),
+            solver: groups(solver),
+            types: ActiveCollisionTypes::default(),
+        })
     }
 
     /// The plan of a native collider of `class`; `None` if its group needs

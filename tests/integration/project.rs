@@ -384,7 +384,8 @@ fn a_collider_the_rules_let_go_of_gets_the_project_settings_back() {
     scene.world.colliders[cube].set_collision_groups(own);
     scene.world.colliders[cube].set_active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
     let mut hooks = RuleHooks::default();
-    hooks.rules_mut().set_personal(body, NoResponse);
+    // No group test says NoContacts: the collider is hooked.
+    hooks.rules_mut().set_personal(body, NoContacts);
     hooks.step(&mut scene.world);
     let collider = &scene.world.colliders[cube];
     assert_eq!(collider.collision_groups(), own, "hooked, the groups stay");

@@ -128,7 +128,7 @@ fn resting_cube(rule: CollisionRule) -> Outcome {
         hooks.step_with_events(&mut scene.world, &events.collector);
         events.drain();
         ever_touching |= scene.touching(cube, scene.floor);
-        let live = hooks.pair_rule(cube, scene.floor);
+        let live = hooks.pair_rule_in(&scene.world, cube, scene.floor);
         ever_live |= live.is_some();
         live_rule = live_rule.or(live);
     }

@@ -118,10 +118,10 @@ pub struct RuleHooks {
     on_created: Option<CreatedCallback>,
     /// Counts steps; the hook compares it to tell the CCD's second answer.
     step: u64,
-    /// How many colliders and bodies the world held after the last step: a
-    /// different count means Rapier removed or added objects, whose pairs
-    /// the after-step sweep must look at even if no body moved.
-    counts: (usize, usize),
+    /// The world's census after the last step (see `upkeep::census`): a
+    /// different one means the project removed, added or moved objects,
+    /// whose pairs the after-step sweep must look at even if no body moved.
+    census: [usize; 6],
     forced: Vec<Node>,
     /// A calculator or callback changed: every pair is to be recalculated.
     recalculate_all: bool,
@@ -187,7 +187,7 @@ impl RuleHooks {
             calculator: None,
             on_created: None,
             step: 0,
-            counts: (0, 0),
+            census: [0; 6],
             forced: Vec::new(),
             recalculate_all: false,
             to_wake: Vec::new(),

@@ -80,6 +80,27 @@ pub(super) fn partners_of(
         )
 }
 
+/// How many colliders, bodies, contact-graph and intersection-graph nodes
+/// and edges the world holds: what changes when the project removes, adds or
+/// moves objects through Rapier, which the hooks do not watch unless the
+/// rules reach them. A removed collider of a hooked pair leaves Rapier's
+/// graphs (its node and its edges), so between two steps in which no body
+/// is awake, an unchanged census means no hooked pair can have ended.
+fn census(world: &PhysicsWorld) -> [usize; 6] {
+    let (contacts, intersections) = (
+        world.narrow_phase.contact_graph().raw_graph(),
+        world.narrow_phase.intersection_graph().raw_graph(),
+    );
+    [
+        world.colliders.len(),
+        world.bodies.len(),
+        contacts.raw_nodes().len(),
+        contacts.raw_edges().len(),
+        intersections.raw_nodes().len(),
+        intersections.raw_edges().len(),
+    ]
+}
+
 /// Stepping.
 impl RuleHooks {
     /// Steps `world` with the rules: [`prepare`](Self::prepare), waking what
@@ -100,11 +121,12 @@ impl RuleHooks {
         self.prepare(&world.bodies, &mut world.colliders);
         self.freeze_manifolds(&world.narrow_phase);
         self.wake_edited(&mut world.islands, &mut world.bodies);
-        let counts = (world.colliders.len(), world.bodies.len());
-        let resting = world.islands.num_active_bodies() == 0 && counts == self.counts;
+        let resting = world.islands.num_active_bodies() == 0;
         world.step_with_events(&*self, events);
-        self.counts = (world.colliders.len(), world.bodies.len());
-        let quiet = resting && world.islands.num_active_bodies() == 0;
+        // Rapier applies removals to its graphs during the step.
+        let census = census(world);
+        let unchanged = std::mem::replace(&mut self.census, census) == census;
+        let quiet = resting && unchanged && world.islands.num_active_bodies() == 0;
         self.finish_step(&world.narrow_phase, &world.bodies, &world.colliders, quiet);
     }
 
@@ -312,9 +334,9 @@ impl RuleHooks {
     }
 
     /// [`after_step`](Self::after_step); `quiet` when no body was awake
-    /// before or after the step and the world holds as many colliders and
-    /// bodies as after the last one, so that no pair can have ended unless
-    /// something was changed before it.
+    /// before or after the step and the world's census after it is that of
+    /// the last step's end (see [`census`]), so that no pair can have ended
+    /// unless something was changed before it.
     fn finish_step(
         &mut self,
         narrow_phase: &NarrowPhase,

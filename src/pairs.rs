@@ -103,7 +103,20 @@ impl PairState {
     /// The pair's rule: its override if it has one, else the computed rule.
     #[inline]
     pub(crate) fn rule(&self) -> CollisionRule {
-        self.overridden.unwrap_or(self.computed)
+        self.rule_for(self.kinds)
+    }
+
+    /// The pair's rule while its bodies are dynamic as `kinds` says. An
+    /// override takes the special case like every other answer: two
+    /// non-dynamic bodies cannot respond, so `Normal` is `NoResponse`
+    /// (`docs/semantics.md`). The computed rule has it already.
+    #[inline]
+    pub(crate) fn rule_for(&self, kinds: (bool, bool)) -> CollisionRule {
+        match self.overridden {
+            Some(CollisionRule::Normal) if kinds == (false, false) => CollisionRule::NoResponse,
+            Some(rule) => rule,
+            None => self.computed,
+        }
     }
 
     /// Whether the hook answered for this pair in `step`.

@@ -46,8 +46,9 @@ impl RuleHooks {
                 bodies,
                 colliders,
             };
+            // The callback's answer takes the special case too.
             if let Some(replaced) = callback(&created) {
-                rule = replaced;
+                rule = special_case(bodies, colliders, a, b, replaced);
             }
         }
         rule
@@ -100,12 +101,12 @@ impl RuleHooks {
         a: ColliderHandle,
         b: ColliderHandle,
     ) -> CollisionRule {
-        let rule = state.rule();
+        let types = body_types(bodies, colliders, a, b);
+        let kinds = (types.0.is_dynamic(), types.1.is_dynamic());
+        let rule = state.rule_for(kinds);
         if !self.recomputes(state) {
             return rule;
         }
-        let types = body_types(bodies, colliders, a, b);
-        let kinds = (types.0.is_dynamic(), types.1.is_dynamic());
         // Two non-dynamic bodies: the rule may rest on the project's types.
         let typed = !kinds.0 && !kinds.1 && self.calculator.is_none() && self.on_created.is_none();
         if kinds != state.kinds || typed {
@@ -218,7 +219,7 @@ impl RuleHooks {
                     return self.restate(context, key, state, kinds);
                 }
                 (
-                    state.rule(),
+                    state.rule_for(kinds),
                     state.manifold,
                     state.answered_again(self.step),
                 )

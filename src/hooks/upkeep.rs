@@ -436,8 +436,14 @@ impl RuleHooks {
                 state.absent =
                     !(pair_exists(narrow_phase, a, b) && filters_pass(bodies, colliders, a, b));
                 true
+            } else if state.answered_in(step) {
+                // Rapier asked the hook during the step: the pair is in its
+                // graph (pairs end only in the broad phase, before the
+                // narrow phase asks), it passed Rapier's filters (tested
+                // before the hook), and the hook saw the bodies' types.
+                answered += 1;
+                true
             } else {
-                answered += usize::from(state.answered_in(step));
                 // From the hooked side, whose pairs are few (Rapier walks
                 // the first collider's pairs).
                 let exists = if hooked(plan, a) {
@@ -449,11 +455,17 @@ impl RuleHooks {
             };
             never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
             // A body changed type (the hooks may not watch it): the rule
-            // follows the default groups.
-            if keep && recomputes && state.overridden.is_none() {
+            // follows the default groups, and an override the special case.
+            // A pair the hook answered was restated with the types it saw.
+            let overridden = state.overridden.is_some();
+            if keep && (overridden || !state.answered_in(step)) {
                 let kinds = kinds_of(bodies, colliders, key);
                 if kinds != state.kinds {
-                    retyped.push((key, kinds));
+                    if recomputes && !overridden {
+                        retyped.push((key, kinds));
+                    } else {
+                        state.kinds = kinds;
+                    }
                 }
             }
             keep
@@ -786,6 +798,12 @@ impl RuleHooks {
             }
         }
         self.stats.pairs_recalculated = updates.len();
+        // The table's order is its hasher's, seeded per process: the
+        // wake-ups and nudges below reach Rapier in handle order instead.
+        updates.sort_unstable_by_key(|(key, _, _)| {
+            let (a, b) = key.colliders();
+            (a.into_raw_parts(), b.into_raw_parts())
+        });
         for (key, computed, force) in updates {
             let state = self
                 .pairs

@@ -10,6 +10,11 @@ use crate::world::{Edit, GROUPS, KINDS, LAYERS, Run, TYPES};
 
 /// Runs the world and edits that `data` decodes to.
 pub fn drive(data: &[u8]) {
+    run_of(data);
+}
+
+/// The world `data` decodes to, after its edits and steps.
+pub fn run_of(data: &[u8]) -> Run {
     let mut bytes = data.iter().copied();
     let mut next = move || bytes.next();
     let byte = |b: Option<u8>| b.unwrap_or(0) as usize;
@@ -64,6 +69,7 @@ pub fn drive(data: &[u8]) {
         run.apply(&edit);
     }
     run.apply(&Edit::Step(1));
+    run
 }
 
 #[cfg(test)]

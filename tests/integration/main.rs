@@ -2,7 +2,9 @@
 //! property tests against a naive reference resolver, and error values.
 
 mod alloc;
+mod determinism;
 mod driver;
+mod edges;
 mod errors;
 mod joints;
 mod live;

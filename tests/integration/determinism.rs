@@ -1,0 +1,83 @@
+//! Determinism: the same scene with the same edits gives bit-identical
+//! positions, rules and live pairs in two separate processes. Hash tables
+//! are seeded per process, so anything the hooks do in an order that
+//! reaches Rapier (wake-ups, group nudges, plans) must not follow their
+//! iteration order. The test runs the scenes in two child processes (this
+//! test binary, asked for `child_digest` alone) and compares what they
+//! print with each other and with this process.
+
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::process::Command;
+
+use crate::driver::run_of;
+
+/// The environment variable that makes `child_digest` print its digest.
+const CHILD: &str = "RULES_DETERMINISM_CHILD";
+
+/// Decodes many edit scripts (the fuzz driver's decoding of bytes from a
+/// fixed generator), steps each world, and hashes every body's pose bit for
+/// bit with the live pairs and their rules. `DefaultHasher::new()` has fixed
+/// keys: the same value in every process.
+fn digest() -> u64 {
+    let mut hasher = DefaultHasher::new();
+    let mut state: u64 = 0x0dd_ba11;
+    for _ in 0..40 {
+        let bytes: Vec<u8> = (0..400)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (state >> 33) as u8
+            })
+            .collect();
+        let run = run_of(&bytes);
+        run.poses().hash(&mut hasher);
+        run.live().hash(&mut hasher);
+        run.hooks.hooked_count().hash(&mut hasher);
+    }
+    hasher.finish()
+}
+
+/// Run alone by `two_processes_step_alike`, in a child process.
+#[test]
+#[ignore = "run by two_processes_step_alike in a child process"]
+fn child_digest() {
+    if std::env::var_os(CHILD).is_some() {
+        println!("\nDIGEST={:016x}", digest());
+    }
+}
+
+fn child() -> String {
+    let exe = std::env::current_exe().expect("the test binary");
+    let output = Command::new(exe)
+        .args([
+            "determinism::child_digest",
+            "--exact",
+            "--ignored",
+            "--nocapture",
+            "--test-threads=1",
+        ])
+        .env(CHILD, "1")
+        .output()
+        .expect("the child process runs");
+    assert!(output.status.success(), "child failed: {output:?}");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    // The test harness prints the test's name on the same line.
+    stdout
+        .split("DIGEST=")
+        .nth(1)
+        .and_then(|rest| rest.get(..16))
+        .unwrap_or_else(|| panic!("no digest in the child's output: {stdout}"))
+        .to_owned()
+}
+
+#[test]
+fn two_processes_step_alike() {
+    let (first, second) = (child(), child());
+    let here = format!("{:016x}", digest());
+    assert_eq!(first, second, "two processes moved the same worlds apart");
+    assert_eq!(
+        first, here,
+        "a child and this process moved the same worlds apart"
+    );
+}

@@ -1,0 +1,52 @@
+//! The edges of the contract: answers the user gives (the pair-created
+//! callback, `set_pair_rule`) between two non-dynamic bodies.
+
+use rapier_collision_rules::{CollisionRule, RuleHooks};
+use rapier3d::prelude::*;
+
+use crate::scenes::Scene;
+use CollisionRule::*;
+
+/// A kinematic platform resting on the floor, whose collision types let
+/// Rapier pair it with fixed colliders (so the pair reaches the hook).
+fn platform(scene: &mut Scene) -> ColliderHandle {
+    let body = scene.world.insert_body(
+        RigidBodyBuilder::kinematic_position_based().translation(Vector::new(0.0, 0.25, 0.0)),
+    );
+    let types = ActiveCollisionTypes::default() | ActiveCollisionTypes::KINEMATIC_FIXED;
+    scene.world.insert_collider(
+        ColliderBuilder::cuboid(1.0, 0.3, 1.0).active_collision_types(types),
+        Some(body),
+    )
+}
+
+/// Every answer for a pair of two non-dynamic bodies takes the special
+/// case: `Normal` reads `NoResponse`, whoever gave it.
+#[test]
+fn user_answers_between_non_dynamic_bodies_take_the_special_case() {
+    // (how the answer is given, the answer, what the pair reads)
+    let table = [
+        ("callback", Normal, NoResponse),
+        ("callback", NoContacts, NoContacts),
+        ("override", Normal, NoResponse),
+        ("override", NoContacts, NoContacts),
+    ];
+    for (how, answer, expected) in table {
+        let mut scene = Scene::new();
+        let platform = platform(&mut scene);
+        let mut hooks = RuleHooks::default();
+        if how == "callback" {
+            hooks.on_pair_created(move |_| Some(answer));
+        }
+        hooks.step(&mut scene.world);
+        if how == "override" {
+            let set = hooks.set_pair_rule_in(&scene.world, platform, scene.floor, answer);
+            assert!(set, "{how} {answer:?}: the pair is live");
+            hooks.step(&mut scene.world);
+        }
+        let read = hooks.pair_rule_in(&scene.world, platform, scene.floor);
+        assert_eq!(read, Some(expected), "{how} {answer:?}: pair_rule_in");
+        let known = hooks.pair_rule(platform, scene.floor);
+        assert_eq!(known, Some(expected), "{how} {answer:?}: pair_rule");
+    }
+}

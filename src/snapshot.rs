@@ -71,10 +71,60 @@ fn sort_key(node: Node) -> (u8, (u32, u32)) {
     }
 }
 
+impl Snapshot {
+    /// What no saved rule set of this crate holds: a group past the saved
+    /// count (a later `create_group` would hand it out again), a node in two
+    /// records or twice in one, a body with two parents. A parent cycle is
+    /// refused by `set_parent` while loading. Checked before anything is
+    /// built, so that a refused load is an error naming the problem, never a
+    /// panic or a rule set that breaks later.
+    fn check(&self) -> Result<(), String> {
+        let count = self.group_count.max(2);
+        if count == u32::MAX {
+            return Err(format!(
+                "saved group count {count}: no group could be created"
+            ));
+        }
+        let known = |g: CollisionGroup| {
+            if g.id() < count {
+                Ok(())
+            } else {
+                Err(format!(
+                    "saved group {} is past the group count {count}",
+                    g.id()
+                ))
+            }
+        };
+        for &(a, b, _) in &self.group_rules {
+            known(a)?;
+            known(b)?;
+        }
+        let mut users = hashbrown::HashSet::new();
+        for record in &self.records {
+            if let Some(group) = record.group {
+                known(group)?;
+            }
+            for &user in &record.users {
+                if !users.insert(user) {
+                    return Err(format!("saved node {user:?} uses more than one record"));
+                }
+            }
+        }
+        let mut children = hashbrown::HashSet::new();
+        for &(child, _) in &self.parents {
+            if !children.insert(child) {
+                return Err(format!("saved body {child:?} has more than one parent"));
+            }
+        }
+        Ok(())
+    }
+}
+
 impl TryFrom<Snapshot> for CollisionRuleSet {
     type Error = String;
 
     fn try_from(saved: Snapshot) -> Result<CollisionRuleSet, String> {
+        saved.check()?;
         let mut rules = CollisionRuleSet::default();
         rules.groups.restore(saved.group_count, saved.group_rules);
         rules.set_default_rule(saved.default_rule);

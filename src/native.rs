@@ -141,6 +141,31 @@ impl ColliderPlan {
         }
     }
 
+    /// The plan of a dynamic collider native by its personal `rule` (see
+    /// [`personal_natives`]): every pair it has with a native collider gets
+    /// `rule`, whatever the groups say. Its memberships are every bit, which
+    /// every filter that is not empty holds (as a hooked collider's do);
+    /// its filters say `rule`: none for `NoPair` (collision groups), none
+    /// for `NoResponse` (solver groups), all for `Normal`, which leaves it
+    /// with Rapier's defaults. Nothing in it depends on the rest of the
+    /// plan, so a partial plan gives it exactly what a whole plan would.
+    fn personal(rule: CollisionRule) -> ColliderPlan {
+        let none = InteractionGroups::new(Group::ALL, Group::NONE, InteractionTestMode::And);
+        let (collision, solver) = match rule {
+            CollisionRule::NoPair => (none, InteractionGroups::all()),
+            CollisionRule::NoResponse => (InteractionGroups::all(), none),
+            _ => (InteractionGroups::all(), InteractionGroups::all()),
+        };
+        ColliderPlan {
+            // Its group takes no part in its pairs: the class only marks it
+            // native.
+            class: Some(Class::unreached(true)),
+            collision,
+            solver,
+            types: ActiveCollisionTypes::default(),
+        }
+    }
+
     /// The plan of a collider no rule reaches: Rapier's defaults.
     pub(crate) fn unreached(dynamic: bool) -> ColliderPlan {
         ColliderPlan {
@@ -191,9 +216,6 @@ pub(crate) struct Plan {
     /// which a personal rule elsewhere can make inexact: a collider whose
     /// chain has a personal rule is then planned with everything.
     personal_restricts: bool,
-    /// The settings of a collider native by a personal `Normal`, if such a
-    /// collider can be native under this plan's group bits.
-    personal_normal: Option<ColliderPlan>,
 }
 
 impl Plan {
@@ -286,7 +308,6 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
     // pairs the rule the personal stage gives it.
     let personal = personal_natives(request, &classes);
     plan.personal_restricts = personal.values().any(|&r| r != CollisionRule::Normal);
-    plan.personal_normal = settings.personal_entry(CollisionRule::Normal);
 
     // Hooked by their own chains or groups.
     let mut hooked: HashSet<ColliderHandle> = classes
@@ -310,11 +331,12 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
     classes.extend(extra.into_iter().filter_map(class_of));
 
     for (handle, class, dynamic) in classes {
-        let personal_entry = || settings.personal_entry(*personal.get(&handle)?);
         let entry = match class.filter(|_| !hooked.contains(&handle)) {
-            None if !hooked.contains(&handle) => {
-                personal_entry().unwrap_or_else(|| ColliderPlan::hooked_plan(dynamic))
-            }
+            None if !hooked.contains(&handle) => personal
+                .get(&handle)
+                .map_or(ColliderPlan::hooked_plan(dynamic), |&rule| {
+                    ColliderPlan::personal(rule)
+                }),
             None => ColliderPlan::hooked_plan(dynamic),
             Some(class) => match settings.entry(class) {
                 Some(entry) => {
@@ -462,9 +484,9 @@ pub(crate) fn replan_some(
         }
         let dynamic = is_dynamic(bodies, collider);
         let entry = match native_class(rules, bodies, colliders, handle, dynamic) {
-            None if dynamic && personal.flatten() == Some(CollisionRule::Normal) => plan
-                .personal_normal
-                .unwrap_or_else(|| ColliderPlan::hooked_plan(dynamic)),
+            None if dynamic && personal.flatten() == Some(CollisionRule::Normal) => {
+                ColliderPlan::personal(CollisionRule::Normal)
+            }
             None => ColliderPlan::hooked_plan(dynamic),
             Some(class) if class == Class::unreached(dynamic) => {
                 match plan.classes.get(&class) {
@@ -647,8 +669,6 @@ struct GroupSettings {
     filters: HashMap<CollisionGroup, (Group, Group)>,
     /// A `NoPair` relation is left to Rapier's default collision types.
     relies_on_types: bool,
-    /// The bits the project's settings leave to the planner.
-    room: Group,
 }
 
 impl GroupSettings {
@@ -784,48 +804,7 @@ impl GroupSettings {
             needs_hook,
             static_types,
             filters,
-            room: room.bits(),
         }
-    }
-
-    /// The plan of a dynamic collider whose chain's personal rules all say
-    /// `rule` (see [`personal_rule`]): every pair it has with a native
-    /// collider gets `rule`, whatever the groups say. Its membership is
-    /// every bit no group was given, which every group's filter holds, and
-    /// its filters say `rule`: none for `NoPair` (collision groups),
-    /// none for `NoResponse` (solver groups). `None` when no such bit is
-    /// left in the room.
-    fn personal_entry(&self, rule: CollisionRule) -> Option<ColliderPlan> {
-        let given = self.bits.values().fold(Group::empty(), |g, &bit| {
-            g | Group::from_bits_retain(1 << bit)
-        });
-        let membership = if given.is_empty() {
-            Group::ALL
-        } else if (self.room - given).is_empty() {
-            return None;
-        } else {
-            Group::ALL - given
-        };
-        let groups = |filter: Group| {
-            if membership == Group::ALL && filter == Group::ALL {
-                InteractionGroups::all()
-            } else {
-                InteractionGroups::new(membership, filter, InteractionTestMode::And)
-            }
-        };
-        let (collision, solver) = match rule {
-            CollisionRule::NoPair => (Group::NONE, Group::ALL),
-            CollisionRule::NoResponse => (Group::ALL, Group::NONE),
-            _ => (Group::ALL, Group::ALL),
-        };
-        // Its group takes no part in its pairs: the class only marks it
-        // native.
-        Some(ColliderPlan {
-            class: Some(Class::unreached(true)),
-            collision: groups(collision),
-            solver: groups(solver),
-            types: ActiveCollisionTypes::default(),
-        })
     }
 
     /// The plan of a native collider of `class`; `None` if its group needs

@@ -437,12 +437,16 @@ impl RuleHooks {
                     !(pair_exists(narrow_phase, a, b) && filters_pass(bodies, colliders, a, b));
                 true
             } else if state.answered_in(step) {
-                // Rapier asked the hook during the step: the pair is in its
-                // graph (pairs end only in the broad phase, before the
-                // narrow phase asks), it passed Rapier's filters (tested
-                // before the hook), and the hook saw the bodies' types.
+                // Rapier asked the hook during the step: the pair passed
+                // Rapier's filters (tested before the hook) and the hook saw
+                // the bodies' types. It may still have ended later in the
+                // step (Rapier looks for pairs again after moving bodies).
                 answered += 1;
-                true
+                if hooked(plan, a) {
+                    pair_exists(narrow_phase, a, b)
+                } else {
+                    pair_exists(narrow_phase, b, a)
+                }
             } else {
                 // From the hooked side, whose pairs are few (Rapier walks
                 // the first collider's pairs).

@@ -246,6 +246,19 @@ pub(crate) struct Request<'a> {
     pub(crate) own: &'a dyn Fn(ColliderHandle, &Collider) -> Settings,
 }
 
+impl Request<'_> {
+    /// Both colliders of every pinned pair.
+    fn pinned_colliders(&self) -> HashSet<ColliderHandle> {
+        self.pinned
+            .iter()
+            .flat_map(|k| {
+                let (a, b) = k.colliders();
+                [a, b]
+            })
+            .collect()
+    }
+}
+
 fn is_dynamic(bodies: &RigidBodySet, collider: &Collider) -> bool {
     collider
         .parent()
@@ -451,14 +464,7 @@ pub(crate) fn replan_some(
     if request.all_hooked.is_some() || plan.full.is_some() {
         return None;
     }
-    let pinned: HashSet<ColliderHandle> = request
-        .pinned
-        .iter()
-        .flat_map(|k| {
-            let (a, b) = k.colliders();
-            [a, b]
-        })
-        .collect();
+    let pinned = request.pinned_colliders();
     let mut planned = Vec::with_capacity(handles.len());
     for &handle in handles {
         let Some(collider) = colliders.get(handle) else {
@@ -628,14 +634,7 @@ fn personal_natives(
         .filter(|(_, class, _)| class.is_none())
         .filter_map(|&(h, _, _)| first_personal(rules, bodies, colliders, h))
         .collect();
-    let pinned: HashSet<ColliderHandle> = request
-        .pinned
-        .iter()
-        .flat_map(|k| {
-            let (a, b) = k.colliders();
-            [a, b]
-        })
-        .collect();
+    let pinned = request.pinned_colliders();
     let mut natives = HashMap::new();
     for &(handle, class, dynamic) in classes {
         if class.is_some() || !dynamic {

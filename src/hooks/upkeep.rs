@@ -424,6 +424,15 @@ impl RuleHooks {
         self.pairs.retain(|key, state| {
             let (a, b) = key.colliders();
             state.absent = false;
+            // From the hooked side, whose pairs are few (Rapier walks the
+            // first collider's pairs).
+            let exists_from_hooked_side = || {
+                if hooked(plan, a) {
+                    pair_exists(narrow_phase, a, b)
+                } else {
+                    pair_exists(narrow_phase, b, a)
+                }
+            };
             let keep = if !hooked(plan, a) && !hooked(plan, b) {
                 // Both sides native now: Rapier decides the pair itself.
                 false
@@ -442,20 +451,9 @@ impl RuleHooks {
                 // the bodies' types. It may still have ended later in the
                 // step (Rapier looks for pairs again after moving bodies).
                 answered += 1;
-                if hooked(plan, a) {
-                    pair_exists(narrow_phase, a, b)
-                } else {
-                    pair_exists(narrow_phase, b, a)
-                }
+                exists_from_hooked_side()
             } else {
-                // From the hooked side, whose pairs are few (Rapier walks
-                // the first collider's pairs).
-                let exists = if hooked(plan, a) {
-                    pair_exists(narrow_phase, a, b)
-                } else {
-                    pair_exists(narrow_phase, b, a)
-                };
-                exists && filters_pass(bodies, colliders, a, b)
+                exists_from_hooked_side() && filters_pass(bodies, colliders, a, b)
             };
             never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
             // A body changed type (the hooks may not watch it): the rule

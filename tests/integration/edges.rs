@@ -50,3 +50,54 @@ fn user_answers_between_non_dynamic_bodies_take_the_special_case() {
         assert_eq!(known, Some(expected), "{how} {answer:?}: pair_rule");
     }
 }
+
+/// A collider disabled through Rapier loses its pairs (Rapier drops them)
+/// and with them their overrides; its rules stay, and once enabled again
+/// its pairs are new and get their rules from the calculation.
+#[test]
+fn a_disabled_collider_keeps_its_rules_and_loses_its_overrides() {
+    // (the cube's personal rule, whether it is hooked)
+    for (personal, hooked) in [(NoContacts, true), (NoResponse, false)] {
+        let mut scene = Scene::new();
+        let (body, cube) = scene.cube(0.0, 0.49);
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_personal(body, personal);
+        hooks.step(&mut scene.world);
+        assert_eq!(
+            hooks.hooked_count() == 1,
+            hooked,
+            "{personal:?}: {:?}",
+            hooks.stats()
+        );
+        let floor = scene.floor;
+        assert!(
+            hooks.set_pair_rule_in(&scene.world, cube, floor, Normal),
+            "{personal:?}: live"
+        );
+        hooks.step(&mut scene.world);
+        assert_eq!(hooks.pair_rule_in(&scene.world, cube, floor), Some(Normal));
+
+        scene.world.colliders[cube].set_enabled(false);
+        hooks.step(&mut scene.world);
+        assert_eq!(
+            hooks.pair_rule_in(&scene.world, cube, floor),
+            None,
+            "{personal:?}: disabled"
+        );
+        assert_eq!(
+            hooks.pair_rule(cube, floor),
+            None,
+            "{personal:?}: disabled, world-less"
+        );
+        assert_eq!(hooks.rules().personal(body), personal, "the rules stay");
+
+        scene.world.colliders[cube].set_enabled(true);
+        scene.world.wake_up(body, true);
+        hooks.step(&mut scene.world);
+        assert_eq!(
+            hooks.pair_rule_in(&scene.world, cube, floor),
+            Some(personal),
+            "{personal:?}: enabled again, the pair is new: no override"
+        );
+    }
+}

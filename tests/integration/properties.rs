@@ -405,3 +405,46 @@ proptest! {
         }
     }
 }
+
+/// Scenes whose bodies form one long parent chain (17 to 28 bodies, past
+/// the 16 nodes `resolve` keeps inline before it spills to the heap), a
+/// collider on each, and random rules on them.
+fn long_chain() -> impl Strategy<Value = Scenario> {
+    (
+        17..29usize,
+        proptest::collection::vec(
+            prop_oneof![
+                3 => (0..64usize, rule()).prop_map(|(x, r)| Op::Personal(x, r)),
+                3 => (0..64usize, 0..64usize, rule()).prop_map(|(x, y, r)| Op::Specific(x, y, r)),
+                2 => (0..64usize, proptest::option::of(0..GROUPS)).prop_map(|(x, g)| Op::Group(x, g)),
+                2 => (0..GROUPS, 0..GROUPS, rule()).prop_map(|(a, b, r)| Op::GroupRule(a, b, r)),
+                1 => (0..64usize, 0..64usize).prop_map(|(x, y)| Op::Share(x, y)),
+            ],
+            0..40,
+        ),
+    )
+        .prop_map(|(n, rules)| {
+            // Body i + 1 is the child of body i: a chain n bodies deep, and
+            // a collider on every body, so some chains hold n + 1 nodes.
+            let links = (0..n - 1).map(|i| Op::Parent(i + 1, i));
+            Scenario {
+                bodies: vec![0; n],
+                colliders: (0..n).map(Some).collect(),
+                ops: links.chain(rules).collect(),
+            }
+        })
+}
+
+proptest! {
+    #![proptest_config(config(300))]
+
+    /// Chains longer than the inline buffer resolve as the reference says.
+    #[test]
+    fn long_chains_match_the_reference(scenario in long_chain()) {
+        let mut run = Run::new(&scenario);
+        for op in &scenario.ops {
+            run.apply(op);
+        }
+        run.check();
+    }
+}

@@ -4,7 +4,9 @@
 //! reaches Rapier (wake-ups, group nudges, plans) must not follow their
 //! iteration order. The test runs the scenes in two child processes (this
 //! test binary, asked for `child_digest` alone) and compares what they
-//! print with each other and with this process.
+//! print with each other and with this process. `.ci/run` also compares
+//! the live pairs and rules of locked worlds between builds with and
+//! without the `parallel` feature (`RULES=` in the child's output).
 
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::process::Command;
@@ -14,25 +16,44 @@ use crate::driver::run_of;
 /// The environment variable that makes `child_digest` print its digest.
 const CHILD: &str = "RULES_DETERMINISM_CHILD";
 
-/// Decodes many edit scripts (the fuzz driver's decoding of bytes from a
+/// The bytes of edit script `i`, from a fixed generator.
+fn script(i: u64) -> Vec<u8> {
+    let mut state: u64 = 0x0dd_ba11 ^ i.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    (0..400)
+        .map(|_| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 33) as u8
+        })
+        .collect()
+}
+
+/// Decodes 40 edit scripts (the fuzz driver's decoding of bytes from a
 /// fixed generator), steps each world, and hashes every body's pose bit for
 /// bit with the live pairs and their rules. `DefaultHasher::new()` has fixed
 /// keys: the same value in every process.
 fn digest() -> u64 {
     let mut hasher = DefaultHasher::new();
-    let mut state: u64 = 0x0dd_ba11;
-    for _ in 0..40 {
-        let bytes: Vec<u8> = (0..400)
-            .map(|_| {
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (state >> 33) as u8
-            })
-            .collect();
-        let run = run_of(&bytes);
+    for i in 0..40 {
+        let run = run_of(&script(i), false);
         run.poses().hash(&mut hasher);
         run.live().hash(&mut hasher);
+        run.hooks.hooked_count().hash(&mut hasher);
+    }
+    hasher.finish()
+}
+
+/// The same scripts on worlds whose dynamic bodies never move, hashing only
+/// the live pairs, their rules and the hooked counts: what must be the same
+/// with and without the `parallel` feature, whose solver may move bodies
+/// otherwise than the serial one.
+fn rules_digest() -> u64 {
+    let mut hasher = DefaultHasher::new();
+    for i in 0..40 {
+        let run = run_of(&script(i), true);
+        run.live().hash(&mut hasher);
+        run.known().hash(&mut hasher);
         run.hooks.hooked_count().hash(&mut hasher);
     }
     hasher.finish()
@@ -44,6 +65,8 @@ fn digest() -> u64 {
 fn child_digest() {
     if std::env::var_os(CHILD).is_some() {
         println!("\nDIGEST={:016x}", digest());
+        // Compared by `.ci/run` between builds with and without `parallel`.
+        println!("\nRULES={:016x}", rules_digest());
     }
 }
 

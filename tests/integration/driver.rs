@@ -10,11 +10,12 @@ use crate::world::{Edit, GROUPS, KINDS, LAYERS, Run, TYPES};
 
 /// Runs the world and edits that `data` decodes to.
 pub fn drive(data: &[u8]) {
-    run_of(data);
+    run_of(data, false);
 }
 
-/// The world `data` decodes to, after its edits and steps.
-pub fn run_of(data: &[u8]) -> Run {
+/// The world `data` decodes to, after its edits and steps; with `locked`,
+/// its dynamic bodies never move (see `Run::new`).
+pub fn run_of(data: &[u8], locked: bool) -> Run {
     let mut bytes = data.iter().copied();
     let mut next = move || bytes.next();
     let byte = |b: Option<u8>| b.unwrap_or(0) as usize;
@@ -30,7 +31,7 @@ pub fn run_of(data: &[u8]) -> Run {
             )
         })
         .collect();
-    let mut run = Run::new(&cubes, byte(next()) % 4 != 0, false);
+    let mut run = Run::new(&cubes, byte(next()) % 4 != 0, locked);
     run.apply(&Edit::Step(1));
     while let Some(op) = next() {
         let edit = match op % 16 {

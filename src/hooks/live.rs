@@ -14,7 +14,7 @@ use std::sync::PoisonError;
 use rapier3d::prelude::*;
 
 use super::RuleHooks;
-use super::upkeep::{filters_pass, kinds_of, pair_exists};
+use super::upkeep::{Joints, filters_pass, kinds_of, pair_exists};
 
 /// A pair's rule as the default calculation gives it, with whether each
 /// body is dynamic; `None` when Rapier holds no such pair.
@@ -30,10 +30,14 @@ pub struct WorldRef<'a> {
     narrow_phase: &'a NarrowPhase,
     bodies: &'a RigidBodySet,
     colliders: &'a ColliderSet,
+    joints: Option<Joints<'a>>,
 }
 
 impl<'a> WorldRef<'a> {
-    /// The parts of a world stepped with a bare `PhysicsPipeline`.
+    /// The parts of a world stepped with a bare `PhysicsPipeline`. Without
+    /// [`with_joints`](Self::with_joints), a pair of bodies that a joint
+    /// with contacts disabled links is answered as if the joint allowed
+    /// contacts.
     pub fn new(
         narrow_phase: &'a NarrowPhase,
         bodies: &'a RigidBodySet,
@@ -43,13 +47,27 @@ impl<'a> WorldRef<'a> {
             narrow_phase,
             bodies,
             colliders,
+            joints: None,
         }
+    }
+
+    /// The world's joint sets too: a pair of bodies that a joint with
+    /// contacts disabled links forms no pair, as Rapier reads it.
+    #[must_use]
+    pub fn with_joints(
+        mut self,
+        impulse: &'a ImpulseJointSet,
+        multibody: &'a MultibodyJointSet,
+    ) -> WorldRef<'a> {
+        self.joints = Some(Joints { impulse, multibody });
+        self
     }
 }
 
 impl<'a> From<&'a PhysicsWorld> for WorldRef<'a> {
     fn from(world: &'a PhysicsWorld) -> WorldRef<'a> {
         WorldRef::new(&world.narrow_phase, &world.bodies, &world.colliders)
+            .with_joints(&world.impulse_joints, &world.multibody_joints)
     }
 }
 
@@ -103,7 +121,7 @@ impl RuleHooks {
         match self.pairs.get(key) {
             Some(state) if state.absent && !pair_exists(world.narrow_phase, a, b) => None,
             // Rapier's filters stop it now (the project changed a setting).
-            Some(_) if !filters_pass(world.bodies, world.colliders, a, b) => None,
+            Some(_) if !filters_pass(world.bodies, world.colliders, world.joints, a, b) => None,
             Some(state) => Some(self.rule_now(state, world.bodies, world.colliders, a, b)),
             None => self.rapier_rule(world, a, b),
         }
@@ -142,7 +160,7 @@ impl RuleHooks {
             .intersection_pairs()
             .map(|(a, b, _)| (a, b));
         contacts.chain(sensors).filter_map(move |(a, b)| {
-            if !filters_pass(world.bodies, world.colliders, a, b) {
+            if !filters_pass(world.bodies, world.colliders, world.joints, a, b) {
                 return None;
             }
             let rule = match self.pairs.get(PairKey::new(a, b)) {
@@ -311,7 +329,7 @@ impl RuleHooks {
     ) -> Option<CollisionRule> {
         let held = world.colliders.contains(a)
             && world.colliders.contains(b)
-            && filters_pass(world.bodies, world.colliders, a, b)
+            && filters_pass(world.bodies, world.colliders, world.joints, a, b)
             && pair_exists(world.narrow_phase, a, b);
         held.then(|| self.resolve(world.bodies, world.colliders, a, b))
     }

@@ -33,13 +33,58 @@ pub(super) fn same_body(colliders: &ColliderSet, a: ColliderHandle, b: ColliderH
     body(a).is_some() && body(a) == body(b)
 }
 
+/// A world's joint sets: Rapier asks no hook about the pairs of two bodies
+/// that a joint with contacts disabled links.
+#[derive(Clone, Copy)]
+pub(super) struct Joints<'a> {
+    pub(super) impulse: &'a ImpulseJointSet,
+    pub(super) multibody: &'a MultibodyJointSet,
+}
+
+impl Joints<'_> {
+    /// Whether a joint keeps the bodies of `a` and `b` from touching, as
+    /// Rapier's narrow phase reads it: an impulse joint with contacts
+    /// disabled, or the same multibody without self-contacts or with such
+    /// a link between them.
+    fn keep_apart(self, colliders: &ColliderSet, a: ColliderHandle, b: ColliderHandle) -> bool {
+        let body = |c: ColliderHandle| colliders.get(c).and_then(|c| c.parent());
+        let (Some(b1), Some(b2)) = (body(a), body(b)) else {
+            return false;
+        };
+        if self
+            .impulse
+            .joints_between(b1, b2)
+            .any(|(_, joint)| !joint.data.contacts_enabled)
+        {
+            return true;
+        }
+        let (Some(l1), Some(l2)) = (
+            self.multibody.rigid_body_link(b1),
+            self.multibody.rigid_body_link(b2),
+        ) else {
+            return false;
+        };
+        l1.multibody == l2.multibody
+            && (self
+                .multibody
+                .get_multibody(l1.multibody)
+                .is_some_and(|mb| !mb.self_contacts_enabled())
+                || self
+                    .multibody
+                    .joint_between(b1, b2)
+                    .is_some_and(|(_, _, link)| !link.joint.data.contacts_enabled))
+    }
+}
+
 /// Whether Rapier's own filters before the hook let the pair of `a` and `b`
-/// through: two rigid bodies, collision types, collision groups (as they are
-/// now: the project's combined with the plan). Rapier's graph keeps an edge
-/// for a pair they stop, which is no pair.
+/// through: two rigid bodies, joints (when the world's joint sets are
+/// known), collision types, collision groups (as they are now: the
+/// project's combined with the plan). Rapier's graph keeps an edge for a
+/// pair they stop, which is no pair.
 pub(super) fn filters_pass(
     bodies: &RigidBodySet,
     colliders: &ColliderSet,
+    joints: Option<Joints<'_>>,
     a: ColliderHandle,
     b: ColliderHandle,
 ) -> bool {
@@ -48,6 +93,7 @@ pub(super) fn filters_pass(
     };
     let types = body_types(bodies, colliders, a, b);
     !same_body(colliders, a, b)
+        && !joints.is_some_and(|j| j.keep_apart(colliders, a, b))
         && (ca.active_collision_types().test(types.0, types.1)
             || cb.active_collision_types().test(types.0, types.1))
         && ca.collision_groups().test(cb.collision_groups())
@@ -127,7 +173,17 @@ impl RuleHooks {
         let census = census(world);
         let unchanged = std::mem::replace(&mut self.census, census) == census;
         let quiet = resting && unchanged && world.islands.num_active_bodies() == 0;
-        self.finish_step(&world.narrow_phase, &world.bodies, &world.colliders, quiet);
+        let joints = Joints {
+            impulse: &world.impulse_joints,
+            multibody: &world.multibody_joints,
+        };
+        self.finish_step(
+            &world.narrow_phase,
+            &world.bodies,
+            &world.colliders,
+            Some(joints),
+            quiet,
+        );
     }
 
     /// Before a bare `PhysicsPipeline::step`: notices what the edits touched
@@ -330,7 +386,7 @@ impl RuleHooks {
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
     ) {
-        self.finish_step(narrow_phase, bodies, colliders, false);
+        self.finish_step(narrow_phase, bodies, colliders, None, false);
     }
 
     /// [`after_step`](Self::after_step); `quiet` when no body was awake
@@ -342,6 +398,7 @@ impl RuleHooks {
         narrow_phase: &NarrowPhase,
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
+        joints: Option<Joints<'_>>,
         quiet: bool,
     ) {
         let pending_empty = self
@@ -396,7 +453,9 @@ impl RuleHooks {
             }
             for other in partners_of(narrow_phase, c) {
                 let key = PairKey::new(c, other);
-                if self.pairs.get(key).is_none() && filters_pass(bodies, colliders, c, other) {
+                if self.pairs.get(key).is_none()
+                    && filters_pass(bodies, colliders, joints, c, other)
+                {
                     unseen.push(key);
                 }
             }
@@ -442,8 +501,8 @@ impl RuleHooks {
                 // Moved onto one body: Rapier never lets them interact.
                 false
             } else if regrouped.contains(&a) || regrouped.contains(&b) {
-                state.absent =
-                    !(pair_exists(narrow_phase, a, b) && filters_pass(bodies, colliders, a, b));
+                state.absent = !(pair_exists(narrow_phase, a, b)
+                    && filters_pass(bodies, colliders, joints, a, b));
                 true
             } else if state.answered_in(step) {
                 // Rapier asked the hook during the step: the pair passed
@@ -453,7 +512,7 @@ impl RuleHooks {
                 answered += 1;
                 exists_from_hooked_side()
             } else {
-                exists_from_hooked_side() && filters_pass(bodies, colliders, a, b)
+                exists_from_hooked_side() && filters_pass(bodies, colliders, joints, a, b)
             };
             never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
             // A body changed type (the hooks may not watch it): the rule

@@ -101,3 +101,38 @@ fn a_disabled_collider_keeps_its_rules_and_loses_its_overrides() {
         );
     }
 }
+
+/// Two overlapping boxes linked by a joint with contacts disabled: Rapier
+/// keeps their pair out of the narrow phase before any hook, so it is no
+/// live pair, hooked or not; with contacts enabled it is one.
+#[test]
+fn a_joint_without_contacts_leaves_no_live_pair() {
+    for (contacts, personal) in [(false, NoContacts), (false, NoResponse), (true, NoContacts)] {
+        let mut scene = Scene::new();
+        let (a, ca) = scene.cube(0.0, 3.0);
+        let (b, cb) = scene.cube(0.3, 3.0);
+        let joint = FixedJointBuilder::new().contacts_enabled(contacts);
+        scene.world.insert_impulse_joint(a, b, joint);
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_personal(a, personal);
+        for _ in 0..3 {
+            hooks.step(&mut scene.world);
+        }
+        let expected = contacts.then_some(personal);
+        let what = format!("contacts {contacts}, {personal:?}");
+        assert_eq!(
+            hooks.pair_rule_in(&scene.world, ca, cb),
+            expected,
+            "{what}: pair_rule_in"
+        );
+        let listed = hooks
+            .pairs_in(&scene.world)
+            .any(|(x, y, _)| (x, y) == (ca, cb) || (x, y) == (cb, ca));
+        assert_eq!(listed, contacts, "{what}: pairs_in");
+        let known = hooks.pair_rule(ca, cb);
+        assert!(
+            known.is_none() || contacts,
+            "{what}: the hooks know {known:?}"
+        );
+    }
+}

@@ -12,6 +12,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 use std::process::Command;
 
 use crate::driver::run_of;
+use crate::world::Run;
 
 /// The environment variable that makes `child_digest` print its digest.
 const CHILD: &str = "RULES_DETERMINISM_CHILD";
@@ -30,33 +31,36 @@ fn script(i: u64) -> Vec<u8> {
 }
 
 /// Decodes 40 edit scripts (the fuzz driver's decoding of bytes from a
-/// fixed generator), steps each world, and hashes every body's pose bit for
-/// bit with the live pairs and their rules. `DefaultHasher::new()` has fixed
+/// fixed generator), steps each world (its dynamic bodies `locked` or not),
+/// and hashes what `what` says of each. `DefaultHasher::new()` has fixed
 /// keys: the same value in every process.
-fn digest() -> u64 {
+fn digest_of(locked: bool, what: impl Fn(&Run, &mut DefaultHasher)) -> u64 {
     let mut hasher = DefaultHasher::new();
     for i in 0..40 {
-        let run = run_of(&script(i), false);
-        run.poses().hash(&mut hasher);
-        run.live().hash(&mut hasher);
-        run.hooks.hooked_count().hash(&mut hasher);
+        what(&run_of(&script(i), locked), &mut hasher);
     }
     hasher.finish()
 }
 
-/// The same scripts on worlds whose dynamic bodies never move, hashing only
-/// the live pairs, their rules and the hooked counts: what must be the same
-/// with and without the `parallel` feature, whose solver may move bodies
-/// otherwise than the serial one.
+/// Every body's pose bit for bit, the live pairs and their rules.
+fn digest() -> u64 {
+    digest_of(false, |run, hasher| {
+        run.poses().hash(hasher);
+        run.live().hash(hasher);
+        run.hooks.hooked_count().hash(hasher);
+    })
+}
+
+/// On worlds whose dynamic bodies never move, only the live pairs, their
+/// rules and the hooked counts: what must be the same with and without the
+/// `parallel` feature, whose solver may move bodies otherwise than the
+/// serial one.
 fn rules_digest() -> u64 {
-    let mut hasher = DefaultHasher::new();
-    for i in 0..40 {
-        let run = run_of(&script(i), true);
-        run.live().hash(&mut hasher);
-        run.known().hash(&mut hasher);
-        run.hooks.hooked_count().hash(&mut hasher);
-    }
-    hasher.finish()
+    digest_of(true, |run, hasher| {
+        run.live().hash(hasher);
+        run.known().hash(hasher);
+        run.hooks.hooked_count().hash(hasher);
+    })
 }
 
 /// Run alone by `two_processes_step_alike`, in a child process.

@@ -34,7 +34,7 @@ pub fn run_of(data: &[u8], locked: bool) -> Run {
     let mut run = Run::new(&cubes, byte(next()) % 4 != 0, locked);
     run.apply(&Edit::Step(1));
     while let Some(op) = next() {
-        let edit = match op % 16 {
+        let edit = match op % 17 {
             0 => Edit::Personal(byte(next()), rule(next())),
             1 => Edit::Group(
                 byte(next()),
@@ -65,6 +65,17 @@ pub fn run_of(data: &[u8], locked: bool) -> Run {
                 byte(next()) % LAYERS.len(),
             ),
             14 => Edit::ProjectTypes(byte(next()), byte(next()) % TYPES.len()),
+            15 => match byte(next()) % 4 {
+                0 => Edit::RemoveSpecific(byte(next()), byte(next())),
+                1 => Edit::Recursive(byte(next())),
+                2 => Edit::InSet(
+                    (0..byte(next()) % 4).map(|_| byte(next())).collect(),
+                    rule(next()),
+                    rule(next()),
+                    byte(next()) % 3 == 0,
+                ),
+                _ => Edit::AddBody(byte(next())),
+            },
             _ => Edit::Step(1 + byte(next()) % 3),
         };
         run.apply(&edit);

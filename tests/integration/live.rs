@@ -43,6 +43,11 @@ fn edit() -> impl Strategy<Value = Edit> {
         1 => (n.clone(), 0..LAYERS.len(), 0..LAYERS.len()).prop_map(|(c, m, f)| Edit::ProjectCollision(c, m, f)),
         1 => (n.clone(), 0..LAYERS.len(), 0..LAYERS.len()).prop_map(|(c, m, f)| Edit::ProjectSolver(c, m, f)),
         1 => (n.clone(), 0..TYPES.len()).prop_map(|(c, t)| Edit::ProjectTypes(c, t)),
+        1 => (n.clone(), n.clone()).prop_map(|(x, y)| Edit::RemoveSpecific(x, y)),
+        1 => n.clone().prop_map(Edit::Recursive),
+        1 => (proptest::collection::vec(0..GROUPS, 0..4), rule(), rule(), any::<bool>())
+            .prop_map(|(set, a, b, remove)| Edit::InSet(set, a, b, remove)),
+        1 => (0..KINDS.len()).prop_map(Edit::AddBody),
         6 => (1..4usize).prop_map(Edit::Step),
     ]
 }

@@ -36,6 +36,15 @@ pub enum Edit {
     /// [`TYPES`].
     ProjectTypes(usize, usize),
     Step(usize),
+    /// `remove_specific` between two nodes.
+    RemoveSpecific(usize, usize),
+    /// `set_rules_recursive` from a node.
+    Recursive(usize),
+    /// `set_group_rules_in_set` on some groups (indices), then
+    /// `remove_group_rules_in_set` when the flag says so.
+    InSet(Vec<usize>, CollisionRule, CollisionRule, bool),
+    /// A body without colliders (a ragdoll's pelvis, a vehicle's frame).
+    AddBody(usize),
 }
 
 /// Layer sets a project may use as memberships or filters.
@@ -283,6 +292,34 @@ impl Run {
                 for _ in 0..n {
                     self.step();
                 }
+            }
+            Edit::RemoveSpecific(x, y) => {
+                let (node, other) = (self.node(x), self.node(y));
+                self.hooks.rules_mut().remove_specific(node, other);
+            }
+            Edit::Recursive(x) => {
+                let node = self.node(x);
+                let (bodies, colliders) = (&self.world.bodies, &self.world.colliders);
+                self.hooks
+                    .rules_mut()
+                    .set_rules_recursive(node, bodies, colliders);
+            }
+            Edit::InSet(ref set, a, b, remove) => {
+                let set: Vec<CollisionGroup> = set.iter().map(|&g| groups[g % GROUPS]).collect();
+                let rules = self.hooks.rules_mut();
+                if remove {
+                    rules.remove_group_rules_in_set(&set);
+                } else {
+                    rules.set_group_rules_in_set(&set, a, b);
+                }
+            }
+            Edit::AddBody(kind) => {
+                let mut builder = RigidBodyBuilder::new(KINDS[kind % KINDS.len()]);
+                if self.locked {
+                    builder = builder.locked_axes(LockedAxes::all()).can_sleep(false);
+                }
+                let body = self.world.insert_body(builder);
+                self.bodies.push(body);
             }
         }
     }

@@ -304,7 +304,13 @@ impl CollisionRuleSet {
         node: impl Into<Node>,
     ) -> CollisionGroup {
         let start = node.into();
-        let mut node = Some(start);
+        // An object Rapier has removed takes no part in any pair: like
+        // `resolve`, read none of its rules (`docs/semantics.md`).
+        let present = match start {
+            Node::Collider(c) => colliders.contains(c),
+            Node::Body(b) => bodies.contains(b),
+        };
+        let mut node = present.then_some(start);
         while let Some(current) = node {
             if let Some(group) = self.group(current) {
                 return group;

@@ -750,7 +750,9 @@ impl CollisionRuleSet {
     }
 
     /// The nodes below `node`: for a body, its colliders and every body below
-    /// it in the parent map with their colliders; a collider has none.
+    /// it in the parent map with their colliders; a collider has none. A
+    /// body Rapier has removed is not in the world: neither it nor the
+    /// bodies under it are descendants (their chains end below it).
     #[must_use]
     pub fn descendants(
         &self,
@@ -763,8 +765,21 @@ impl CollisionRuleSet {
         };
         let mut body_list = self.hierarchy.descendants(root);
         body_list.push(root);
+        // Bodies missing from the set are not in the world: not descendants,
+        // and a chain ends below one (as `resolve` reads it), so neither are
+        // the bodies under it.
+        let reaches_root = |mut body: RigidBodyHandle| loop {
+            if !bodies.contains(body) {
+                return false;
+            }
+            match self.hierarchy.parent(body) {
+                _ if body == root => return true,
+                Some(parent) => body = parent,
+                None => return false,
+            }
+        };
+        body_list.retain(|&b| reaches_root(b));
         let mut nodes = Vec::new();
-        // Bodies missing from the set are not in the world: not descendants.
         for (body, rigid_body) in body_list.iter().filter_map(|&b| Some((b, bodies.get(b)?))) {
             nodes.extend(
                 rigid_body

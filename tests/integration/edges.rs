@@ -136,3 +136,55 @@ fn a_joint_without_contacts_leaves_no_live_pair() {
         );
     }
 }
+
+/// The readers that take the world read no rules of an object Rapier has
+/// removed, as `resolve` reads none: its group is the default one, and a
+/// body under a removed one is no descendant of the bodies above it.
+#[test]
+fn removed_objects_lend_no_rules_to_readers_that_take_the_world() {
+    use rapier_collision_rules::{CollisionGroup, Node};
+    let mut world = PhysicsWorld::new();
+    let mut limb = |world: &mut PhysicsWorld| {
+        let body = world.insert_body(RigidBodyBuilder::dynamic());
+        let collider = world.insert_collider(ColliderBuilder::ball(0.2), Some(body));
+        (body, collider)
+    };
+    let ((pelvis, hip), (thigh, _), (shin, calf)) =
+        (limb(&mut world), limb(&mut world), limb(&mut world));
+    let loose = world.insert_collider(ColliderBuilder::ball(0.2), None);
+    let mut hooks = RuleHooks::default();
+    let rules = hooks.rules_mut();
+    let ragdoll = rules.create_group();
+    rules.set_parent(thigh, pelvis).expect("a tree");
+    rules.set_parent(shin, thigh).expect("a tree");
+    rules.set_group(thigh, Some(ragdoll));
+    rules.set_group(loose, Some(ragdoll));
+    let (bodies, colliders) = (&world.bodies, &world.colliders);
+    assert_eq!(rules.effective_group(bodies, colliders, calf), ragdoll);
+    assert_eq!(rules.descendants(pelvis, bodies, colliders).len(), 5);
+
+    world.remove_body(thigh);
+    world.remove_collider(loose);
+    let (bodies, colliders) = (&world.bodies, &world.colliders);
+    let rules = hooks.rules();
+    let removed_default = CollisionGroup::DEFAULT_KINEMATIC;
+    assert_eq!(
+        rules.effective_group(bodies, colliders, loose),
+        removed_default
+    );
+    assert_eq!(
+        rules.effective_group(bodies, colliders, thigh),
+        removed_default
+    );
+    assert_eq!(
+        rules.effective_group(bodies, colliders, calf),
+        CollisionGroup::DEFAULT_DYNAMIC,
+        "the shin's chain ends below the removed thigh"
+    );
+    assert_eq!(
+        rules.descendants(pelvis, bodies, colliders),
+        vec![Node::Collider(hip)]
+    );
+    let why = rules.explain(bodies, colliders, calf, loose);
+    assert_eq!(why.rule, rules.resolve(bodies, colliders, calf, loose));
+}

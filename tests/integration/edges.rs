@@ -144,7 +144,7 @@ fn a_joint_without_contacts_leaves_no_live_pair() {
 fn removed_objects_lend_no_rules_to_readers_that_take_the_world() {
     use rapier_collision_rules::{CollisionGroup, Node};
     let mut world = PhysicsWorld::new();
-    let mut limb = |world: &mut PhysicsWorld| {
+    let limb = |world: &mut PhysicsWorld| {
         let body = world.insert_body(RigidBodyBuilder::dynamic());
         let collider = world.insert_collider(ColliderBuilder::ball(0.2), Some(body));
         (body, collider)

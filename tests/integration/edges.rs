@@ -188,3 +188,62 @@ fn removed_objects_lend_no_rules_to_readers_that_take_the_world() {
     let why = rules.explain(bodies, colliders, calf, loose);
     assert_eq!(why.rule, rules.resolve(bodies, colliders, calf, loose));
 }
+
+/// A body added under a node after `set_rules_recursive` does not share
+/// the node's record (only the descendants of that moment do) but takes
+/// its group through the parent map; re-parenting a body that shares a
+/// record keeps the sharing, and an edit through either node reaches the
+/// live pairs of both.
+#[test]
+fn sharing_survives_later_children_and_reparenting() {
+    let mut scene = Scene::new();
+    let (chassis, hull) = scene.cube(0.0, 0.49);
+    let (wheel, _) = scene.cube(1.2, 0.49);
+    let mut hooks = RuleHooks::default();
+    let rules = hooks.rules_mut();
+    let vehicle = rules.create_group();
+    rules.set_group(chassis, Some(vehicle));
+    rules.set_parent(wheel, chassis).expect("a tree");
+    rules.set_rules_recursive(chassis, &scene.world.bodies, &scene.world.colliders);
+    assert!(rules.shares_rules(chassis, wheel));
+    hooks.step(&mut scene.world);
+
+    // A wheel added later: not sharing, in the group through its parent.
+    let (spare, spare_tyre) = scene.cube(-1.2, 0.49);
+    let rules = hooks.rules_mut();
+    rules.set_parent(spare, chassis).expect("a tree");
+    assert!(!rules.shares_rules(chassis, spare), "added after the call");
+    let (bodies, colliders) = (&scene.world.bodies, &scene.world.colliders);
+    assert_eq!(
+        rules.effective_group(bodies, colliders, spare_tyre),
+        vehicle
+    );
+
+    // Re-parented under the spare, the wheel still shares the chassis'
+    // record: a personal rule set through the chassis reaches the wheel's
+    // pair with the floor before the next step.
+    let rules = hooks.rules_mut();
+    rules.set_parent(wheel, spare).expect("a tree");
+    assert!(
+        rules.shares_rules(chassis, wheel),
+        "re-parenting keeps sharing"
+    );
+    rules.set_personal(chassis, NoResponse);
+    hooks.step(&mut scene.world);
+    let wheel_tyre = scene.world.bodies[wheel].colliders()[0];
+    for (collider, what) in [(hull, "hull"), (wheel_tyre, "wheel")] {
+        assert_eq!(
+            hooks.pair_rule_in(&scene.world, collider, scene.floor),
+            Some(NoResponse),
+            "{what}'s pair with the floor"
+        );
+    }
+    // The spare shares nothing, but the chassis' personal rule is two
+    // steps up its chain, where the floor's chain (two nodes) stays at its
+    // root, which has none: the personal stage decides there.
+    assert_eq!(
+        hooks.pair_rule_in(&scene.world, spare_tyre, scene.floor),
+        Some(NoResponse),
+        "the spare's pair with the floor"
+    );
+}

@@ -229,6 +229,13 @@ impl RuleHooks {
     }
 }
 
+/// Whether either collider of the pair is a sensor.
+#[cold]
+fn sensor_pair(context: &PairFilterContext<'_>) -> bool {
+    let sensor = |c: ColliderHandle| context.colliders.get(c).is_some_and(|c| c.is_sensor());
+    sensor(context.collider1) || sensor(context.collider2)
+}
+
 /// Whether the body of each collider of `key` is dynamic, in key order,
 /// read from the hook's context.
 #[inline]
@@ -326,6 +333,10 @@ impl PhysicsHooks for RuleHooks {
             let (rule, manifold, again) = self.lookup(context);
             let computes = rule.computes_contacts()
                 || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair);
+            // The CCD's sweep takes a sensor for a pass-through hit, which
+            // clamps nothing and gives the intersection events: a sensor
+            // pair stays in the sweep.
+            let again = again && !sensor_pair(context);
             // NoPair and NoContacts never reach the project's hooks.
             contact_answer(computes, rule.responds(), again)?
         } else {

@@ -247,3 +247,50 @@ fn sharing_survives_later_children_and_reparenting() {
         "the spare's pair with the floor"
     );
 }
+
+/// A fast CCD bullet that crosses a thin sensor within one step: with the
+/// sensor hooked (`NoResponse` or `Normal` by a rule that Rapier's groups
+/// cannot say alone) it gets the intersection events plain Rapier gives.
+#[test]
+fn a_bullet_crossing_a_hooked_sensor_gets_plain_rapiers_events() {
+    use crate::scenes::Events;
+    let run = |rule: Option<CollisionRule>| {
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::ZERO;
+        let gate =
+            world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(5.0, 0.0, 0.0)));
+        let sensor = world.insert_collider(
+            ColliderBuilder::cuboid(0.05, 2.0, 2.0)
+                .sensor(true)
+                .active_events(ActiveEvents::COLLISION_EVENTS),
+            Some(gate),
+        );
+        let bullet = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .linvel(Vector::new(600.0, 0.0, 0.0))
+                .ccd_enabled(true),
+        );
+        let shot = world.insert_collider(ColliderBuilder::ball(0.05), Some(bullet));
+        let mut hooks = RuleHooks::default();
+        if let Some(rule) = rule {
+            // A specific rule about the two: the sensor's side is hooked.
+            hooks.rules_mut().set_specific(sensor, shot, rule);
+        }
+        let mut events = Events::new();
+        for _ in 0..10 {
+            hooks.step_with_events(&mut world, &events.collector);
+            events.drain();
+        }
+        let x = world.bodies[bullet].translation().x;
+        (events.started, events.stopped, x > 5.0)
+    };
+    let plain = run(None);
+    assert!(plain.2, "the bullet passes the sensor: {plain:?}");
+    for rule in [Normal, NoResponse] {
+        assert_eq!(
+            run(Some(rule)),
+            plain,
+            "{rule:?}: (started, stopped, passed) against plain Rapier"
+        );
+    }
+}

@@ -273,7 +273,7 @@ fn a_bullet_crossing_a_hooked_sensor_gets_plain_rapiers_events() {
         let shot = world.insert_collider(ColliderBuilder::ball(0.05), Some(bullet));
         let mut hooks = RuleHooks::default();
         if let Some(rule) = rule {
-            // A specific rule about the two: the sensor's side is hooked.
+            // A specific rule about the two hooks one side: the bullet.
             hooks.rules_mut().set_specific(sensor, shot, rule);
         }
         let mut events = Events::new();

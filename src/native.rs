@@ -509,15 +509,16 @@ pub(crate) fn replan_some(
     Some(planned)
 }
 
-/// Whether a node of the chain of `leaf` carries specific entries or is
-/// named by one: the side that carries them is chosen by a whole plan.
-fn touches_entries(
+/// Whether `start` or a node above it carries specific entries or is named
+/// by one: the side that carries them is chosen by a whole plan, from the
+/// colliders under each side and their bodies' types.
+pub(crate) fn touches_entries(
     rules: &CollisionRuleSet,
     bodies: &RigidBodySet,
     colliders: &ColliderSet,
-    leaf: ColliderHandle,
+    start: impl Into<Node>,
 ) -> bool {
-    let mut node = Some(Node::Collider(leaf));
+    let mut node = Some(start.into());
     while let Some(current) = node {
         if rules.is_named(current)
             || rules
@@ -629,11 +630,30 @@ fn personal_natives(
         colliders,
         ..
     } = *request;
-    let firsts: Vec<(CollisionRule, usize)> = classes
-        .iter()
-        .filter(|(_, class, _)| class.is_none())
-        .filter_map(|&(h, _, _)| first_personal(rules, bodies, colliders, h))
-        .collect();
+    // The least restrictive first personal rule at each depth, then above
+    // each depth: one pass, whatever the number of personal colliders.
+    let mut least: Vec<Option<CollisionRule>> = Vec::new();
+    for &(h, class, _) in classes {
+        if class.is_some() {
+            continue;
+        }
+        if let Some((rule, depth)) = first_personal(rules, bodies, colliders, h) {
+            if least.len() <= depth {
+                least.resize(depth + 1, None);
+            }
+            least[depth] = Some(least[depth].map_or(rule, |r| r.min(rule)));
+        }
+    }
+    // `shallower[d]`: the least restrictive first personal rule at a depth
+    // below `d`.
+    let mut shallower = vec![None; least.len() + 1];
+    for d in 0..least.len() {
+        shallower[d + 1] = match (shallower[d], least[d]) {
+            (Some(a), Some(b)) => Some(CollisionRule::min(a, b)),
+            (a, b) => a.or(b),
+        };
+    }
+    let shallower_than = |depth: usize| shallower[depth.min(least.len())];
     let pinned = request.pinned_colliders();
     let mut natives = HashMap::new();
     for &(handle, class, dynamic) in classes {
@@ -644,7 +664,7 @@ fn personal_natives(
             continue;
         };
         if rule != CollisionRule::Normal {
-            let overridden = firsts.iter().any(|&(r, d)| d < depth && r < rule);
+            let overridden = shallower_than(depth).is_some_and(|r| r < rule);
             let reached_by_entries =
                 pinned.contains(&handle) || touches_entries(rules, bodies, colliders, handle);
             if overridden || reached_by_entries {

@@ -253,7 +253,7 @@ impl RuleHooks {
             .map(|&b| Node::Body(b))
             .chain(look.added.iter().map(|&c| Node::Collider(c)))
             .chain(look.changed.iter().copied())
-            .any(|node| self.under_entry_side(bodies, colliders, node));
+            .any(|node| native::touches_entries(&self.rules, bodies, colliders, node));
         self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
         for &c in &look.released {
             self.plan.colliders.remove(c);
@@ -806,20 +806,6 @@ impl RuleHooks {
             collider.set_collision_groups(InteractionGroups::none());
         }
         target.write(collider);
-    }
-
-    /// Whether `node` or a node above it holds or is named by a specific
-    /// entry: then its colliders count in which side of the entry is hooked.
-    fn under_entry_side(&self, bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) -> bool {
-        let mut current = Some(node);
-        while let Some(n) = current {
-            let holds = self.rules.record(n).is_some_and(|r| !r.specific.is_empty());
-            if holds || self.rules.is_named(n) {
-                return true;
-            }
-            current = self.rules.hierarchy.next(bodies, colliders, n);
-        }
-        false
     }
 
     /// `node` itself if it is a collider, and every collider below it.

@@ -74,6 +74,10 @@ pub(crate) struct PairState {
     /// The step in which the hook last answered for this pair: a second
     /// answer in one step comes from the CCD (see `RuleHooks`).
     pub(crate) last_answer: AtomicU64,
+    /// Where the pair's bodies were at the hook's last answer, for a pair
+    /// whose contacts get no response (see `answer.rs`, `poses`): the CCD
+    /// asks at the poses of the narrow phase's last pass.
+    pub(crate) poses: AtomicU64,
     /// The contacts frozen by `ManifoldUpdate::Never`, with the step they
     /// were frozen in; `None` until the first contact update after the
     /// setting took effect.
@@ -94,6 +98,7 @@ impl PairState {
             overridden: None,
             manifold: ManifoldUpdate::ByRule,
             last_answer: AtomicU64::new(step),
+            poses: AtomicU64::new(0),
             frozen: Mutex::new(None),
             absent: false,
             kinds,
@@ -129,6 +134,19 @@ impl PairState {
     #[inline]
     pub(crate) fn answered_again(&self, step: u64) -> bool {
         self.last_answer.swap(step, Ordering::Relaxed) == step
+    }
+
+    /// Records an answer in `step` with the bodies at `poses`; `true` if it
+    /// is the CCD's: the hook already answered in this step and no body
+    /// moved since. The narrow phase asks again only after the bodies moved
+    /// (a CCD substep or another pipeline step between the hooks'
+    /// `prepare` and `after_step`), the CCD at the poses of the narrow
+    /// phase's last pass (`docs/architecture.md`, "The CCD").
+    #[inline]
+    pub(crate) fn answered_by_ccd(&self, step: u64, poses: u64) -> bool {
+        let again = self.answered_again(step);
+        let moved = self.poses.swap(poses, Ordering::Relaxed) != poses;
+        again && !moved
     }
 }
 

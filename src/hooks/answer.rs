@@ -3,6 +3,7 @@
 //! first time calculated on the slow path, and the contacts of
 //! `ManifoldUpdate::Never` pairs replayed (`docs/architecture.md`).
 
+use std::sync::atomic::Ordering;
 use std::sync::{MutexGuard, PoisonError};
 
 use hashbrown::HashMap;
@@ -155,7 +156,6 @@ impl RuleHooks {
         state: &PairState,
         kinds: (bool, bool),
     ) -> (CollisionRule, ManifoldUpdate, bool) {
-        let again = state.answered_again(self.step);
         let pending = self.pending().get(&key).map(PairState::rule);
         let rule = pending.unwrap_or_else(|| {
             let (a, b) = key.colliders();
@@ -164,6 +164,7 @@ impl RuleHooks {
                 .insert(key, PairState::new(rule, self.step, kinds));
             rule
         });
+        let again = self.answered_by_ccd(context, state, rule, state.manifold);
         (rule, state.manifold, again)
     }
 
@@ -177,18 +178,20 @@ impl RuleHooks {
         key: PairKey,
     ) -> (CollisionRule, ManifoldUpdate, bool) {
         if let Some(state) = self.pending().get(&key) {
+            let (rule, manifold) = (state.rule(), state.manifold);
             return (
-                state.rule(),
-                state.manifold,
-                state.answered_again(self.step),
+                rule,
+                manifold,
+                self.answered_by_ccd(context, state, rule, manifold),
             );
         }
         let (a, b) = key.colliders();
         let rule = self.calculate(context.bodies, context.colliders, a, b);
         let kinds = kinds_in(context, key);
-        self.pending()
-            .entry(key)
-            .or_insert_with(|| PairState::new(rule, self.step, kinds));
+        let state = PairState::new(rule, self.step, kinds);
+        // Later answers in this step at the same poses are the CCD's.
+        state.poses.store(poses(context), Ordering::Relaxed);
+        self.pending().entry(key).or_insert(state);
         // The CCD sweeps only bodies it marked active; a first answer to such
         // a body may be the sweep's, so a pair without response stays out of
         // it (its contacts start with the next step).
@@ -197,6 +200,35 @@ impl RuleHooks {
             .and_then(|body| context.bodies.get(body))
             .is_some_and(|body| body.is_ccd_active());
         (rule, ManifoldUpdate::ByRule, maybe_ccd)
+    }
+
+    /// Records an answer for `state`; `true` if it is the CCD's (see
+    /// [`PairState::answered_by_ccd`]). Only a pair whose contacts get no
+    /// response answers the CCD differently, so only its bodies' poses are
+    /// read.
+    #[inline]
+    fn answered_by_ccd(
+        &self,
+        context: &PairFilterContext<'_>,
+        state: &PairState,
+        rule: CollisionRule,
+        manifold: ManifoldUpdate,
+    ) -> bool {
+        if computes(rule, manifold) && !rule.responds() {
+            state.answered_by_ccd(self.step, poses(context))
+        } else {
+            state.answered_again(self.step)
+        }
+    }
+
+    /// Notes that Rapier stepped with the hooks (`prepare` checks that
+    /// `after_step` followed). Written once per step: the other answers
+    /// only read it.
+    #[inline]
+    fn answering(&self) {
+        if self.prepared && !self.stepped.load(Ordering::Relaxed) {
+            self.stepped.store(true, Ordering::Relaxed);
+        }
     }
 
     fn pending(&self) -> MutexGuard<'_, HashMap<PairKey, PairState>> {
@@ -218,15 +250,42 @@ impl RuleHooks {
                 if (kinds != state.kinds || typed) && self.recomputes(state) {
                     return self.restate(context, key, state, kinds);
                 }
-                (
-                    state.rule_for(kinds),
-                    state.manifold,
-                    state.answered_again(self.step),
-                )
+                let rule = state.rule_for(kinds);
+                let again = self.answered_by_ccd(context, state, rule, state.manifold);
+                (rule, state.manifold, again)
             }
             None => self.first_sighting(context, key),
         }
     }
+}
+
+/// Whether the narrow phase computes contacts for a pair with `rule` and
+/// `manifold` (an `Always` pair computes them whatever its rule but
+/// `NoPair`).
+#[inline]
+fn computes(rule: CollisionRule, manifold: ManifoldUpdate) -> bool {
+    rule.computes_contacts()
+        || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair)
+}
+
+/// Where the pair's bodies are, folded into one number (equal poses give
+/// equal numbers, in either collider order). Bodies move only between the
+/// narrow phase's passes, and the CCD asks at the poses of the last one.
+#[inline]
+fn poses(context: &PairFilterContext<'_>) -> u64 {
+    let pose = |body: Option<RigidBodyHandle>| {
+        let Some(body) = body.and_then(|b| context.bodies.get(b)) else {
+            return 0;
+        };
+        let pose = body.position();
+        let (t, r) = (pose.translation, pose.rotation);
+        [t.x, t.y, t.z, r.x, r.y, r.z, r.w]
+            .into_iter()
+            .fold(0xcbf2_9ce4_8422_2325_u64, |hash, value| {
+                (hash ^ u64::from(value.to_bits())).wrapping_mul(0x0100_0000_01b3)
+            })
+    };
+    pose(context.rigid_body1).wrapping_add(pose(context.rigid_body2))
 }
 
 /// Whether either collider of the pair is a sensor.
@@ -330,9 +389,9 @@ impl PhysicsHooks for RuleHooks {
     fn filter_contact_pair(&self, context: &PairFilterContext<'_>) -> Option<SolverFlags> {
         let (a, b) = (context.collider1, context.collider2);
         let ours = if self.decides(a, b) {
+            self.answering();
             let (rule, manifold, again) = self.lookup(context);
-            let computes = rule.computes_contacts()
-                || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair);
+            let computes = computes(rule, manifold);
             // The CCD's sweep takes a sensor for a pass-through hit, which
             // clamps nothing and gives the intersection events: a sensor
             // pair stays in the sweep.
@@ -354,10 +413,9 @@ impl PhysicsHooks for RuleHooks {
     fn filter_intersection_pair(&self, context: &PairFilterContext<'_>) -> bool {
         let (a, b) = (context.collider1, context.collider2);
         if self.decides(a, b) {
+            self.answering();
             let (rule, manifold, _) = self.lookup(context);
-            let computes = rule.computes_contacts()
-                || (manifold == ManifoldUpdate::Always && rule != CollisionRule::NoPair);
-            if !computes {
+            if !computes(rule, manifold) {
                 return false;
             }
         }

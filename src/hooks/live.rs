@@ -285,6 +285,7 @@ impl RuleHooks {
         native: Native,
         update: ManifoldUpdate,
     ) -> bool {
+        self.unsettled |= update == ManifoldUpdate::Never;
         self.edit_pair(a, b, native, |state| {
             state.manifold = update;
             *state

@@ -10,6 +10,7 @@ mod roster;
 mod upkeep;
 
 use std::sync::Mutex;
+use std::sync::atomic::AtomicBool;
 
 use hashbrown::{HashMap, HashSet};
 use rapier3d::prelude::*;
@@ -118,6 +119,14 @@ pub struct RuleHooks {
     on_created: Option<CreatedCallback>,
     /// Counts steps; the hook compares it to tell the CCD's second answer.
     step: u64,
+    /// `prepare` ran and `after_step` has not yet (the step boundary).
+    prepared: bool,
+    /// The hook answered since the last `prepare`.
+    stepped: AtomicBool,
+    /// A `ManifoldUpdate::Never` setting waits for `freeze_manifolds`.
+    unsettled: bool,
+    /// One did at `prepare`: `after_step` checks that it was settled.
+    owe_freeze: bool,
     /// The world's census after the last step (see `upkeep::census`): a
     /// different one means the project removed, added or moved objects,
     /// whose pairs the after-step sweep must look at even if no body moved.
@@ -187,6 +196,10 @@ impl RuleHooks {
             calculator: None,
             on_created: None,
             step: 0,
+            prepared: false,
+            stepped: AtomicBool::new(false),
+            unsettled: false,
+            owe_freeze: false,
             census: [0; 6],
             forced: Vec::new(),
             recalculate_all: false,

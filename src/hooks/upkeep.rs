@@ -132,19 +132,36 @@ pub(super) fn partners_of(
 /// rules reach them. A removed collider of a hooked pair leaves Rapier's
 /// graphs (its node and its edges), so between two steps in which no body
 /// is awake, an unchanged census means no hooked pair can have ended.
-fn census(world: &PhysicsWorld) -> [usize; 6] {
+fn census(
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    narrow_phase: &NarrowPhase,
+) -> [usize; 6] {
     let (contacts, intersections) = (
-        world.narrow_phase.contact_graph().raw_graph(),
-        world.narrow_phase.intersection_graph().raw_graph(),
+        narrow_phase.contact_graph().raw_graph(),
+        narrow_phase.intersection_graph().raw_graph(),
     );
     [
-        world.colliders.len(),
-        world.bodies.len(),
+        colliders.len(),
+        bodies.len(),
         contacts.raw_nodes().len(),
         contacts.raw_edges().len(),
         intersections.raw_nodes().len(),
         intersections.raw_edges().len(),
     ]
+}
+
+/// Names the call a bare-pipeline user left out; the physics would
+/// otherwise change silently (`docs/architecture.md`, "The step boundary").
+#[cold]
+#[track_caller]
+fn missing(call: &str, when: &str) -> ! {
+    panic!(
+        "RuleHooks::{call} was not called {when}: without it the rules do not \
+         hold. Step with RuleHooks::step, RuleHooks::step_pipeline, or call \
+         prepare, freeze_manifolds and wake_edited before PhysicsPipeline::step \
+         and after_step after it"
+    )
 }
 
 /// Stepping.
@@ -157,33 +174,109 @@ impl RuleHooks {
 
     /// [`step`](Self::step), with Rapier's events sent to `events`.
     pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
-        if self.idle() {
+        self.step_pipeline(
+            &mut world.physics_pipeline,
+            world.gravity,
+            &world.integration_parameters,
+            &mut world.islands,
+            &mut world.broad_phase,
+            &mut world.narrow_phase,
+            &mut world.bodies,
+            &mut world.colliders,
+            &mut world.impulse_joints,
+            &mut world.multibody_joints,
+            &mut world.soft_bodies,
+            &mut world.ccd_solver,
+            events,
+        );
+    }
+
+    /// Steps a bare `PhysicsPipeline` with the rules: everything
+    /// [`step_with_events`](Self::step_with_events) does around Rapier's
+    /// step. Takes `PhysicsPipeline::step`'s arguments in its order, but
+    /// the hooks.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let (mut bodies, mut colliders) = (RigidBodySet::new(), ColliderSet::new());
+    /// let floor = bodies.insert(RigidBodyBuilder::fixed());
+    /// colliders.insert_with_parent(ColliderBuilder::cuboid(5.0, 0.5, 5.0), floor, &mut bodies);
+    /// let ghost = bodies.insert(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.5, 0.0)));
+    /// colliders.insert_with_parent(ColliderBuilder::ball(0.5), ghost, &mut bodies);
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific(ghost, floor, CollisionRule::NoResponse);
+    ///
+    /// let (mut pipeline, mut islands) = (PhysicsPipeline::new(), IslandManager::new());
+    /// let (mut broad_phase, mut narrow_phase) = (BroadPhaseBvh::new(), NarrowPhase::new());
+    /// let (mut impulse_joints, mut multibody_joints) = (ImpulseJointSet::new(), MultibodyJointSet::new());
+    /// let (mut soft_bodies, mut ccd) = (SoftBodySet::new(), CCDSolver::new());
+    /// let params = IntegrationParameters::default();
+    /// for _ in 0..60 {
+    ///     hooks.step_pipeline(
+    ///         &mut pipeline, Vector::Y * -9.81, &params, &mut islands,
+    ///         &mut broad_phase, &mut narrow_phase, &mut bodies, &mut colliders,
+    ///         &mut impulse_joints, &mut multibody_joints, &mut soft_bodies, &mut ccd, &(),
+    ///     );
+    /// }
+    /// assert!(bodies[ghost].translation().y < 0.0, "the ghost fell through the floor");
+    /// ```
+    #[allow(clippy::too_many_arguments)]
+    pub fn step_pipeline(
+        &mut self,
+        pipeline: &mut PhysicsPipeline,
+        gravity: Vector,
+        integration_parameters: &IntegrationParameters,
+        islands: &mut IslandManager,
+        broad_phase: &mut BroadPhaseBvh,
+        narrow_phase: &mut NarrowPhase,
+        bodies: &mut RigidBodySet,
+        colliders: &mut ColliderSet,
+        impulse_joints: &mut ImpulseJointSet,
+        multibody_joints: &mut MultibodyJointSet,
+        soft_bodies: &mut SoftBodySet,
+        ccd_solver: &mut CCDSolver,
+        events: &dyn EventHandler,
+    ) {
+        let idle = self.idle();
+        if idle {
             // No collider carries the hook flag: Rapier never calls the hook.
             self.step += 1;
             self.stats = StepStats::default();
-            world.step_with_events(&*self, events);
+        } else {
+            self.prepare(bodies, colliders);
+            self.freeze_manifolds(narrow_phase);
+            self.wake_edited(islands, bodies);
+        }
+        let resting = islands.num_active_bodies() == 0;
+        pipeline.step(
+            gravity,
+            integration_parameters,
+            islands,
+            broad_phase,
+            narrow_phase,
+            bodies,
+            colliders,
+            impulse_joints,
+            multibody_joints,
+            soft_bodies,
+            ccd_solver,
+            &*self,
+            events,
+        );
+        if idle {
             return;
         }
-        self.prepare(&world.bodies, &mut world.colliders);
-        self.freeze_manifolds(&world.narrow_phase);
-        self.wake_edited(&mut world.islands, &mut world.bodies);
-        let resting = world.islands.num_active_bodies() == 0;
-        world.step_with_events(&*self, events);
         // Rapier applies removals to its graphs during the step.
-        let census = census(world);
+        let census = census(bodies, colliders, narrow_phase);
         let unchanged = std::mem::replace(&mut self.census, census) == census;
-        let quiet = resting && unchanged && world.islands.num_active_bodies() == 0;
+        let quiet = resting && unchanged && islands.num_active_bodies() == 0;
         let joints = Joints {
-            impulse: &world.impulse_joints,
-            multibody: &world.multibody_joints,
+            impulse: impulse_joints,
+            multibody: multibody_joints,
         };
-        self.finish_step(
-            &world.narrow_phase,
-            &world.bodies,
-            &world.colliders,
-            Some(joints),
-            quiet,
-        );
+        self.finish_step(narrow_phase, bodies, colliders, Some(joints), quiet);
     }
 
     /// Before a bare `PhysicsPipeline::step`: notices what the edits touched
@@ -194,7 +287,18 @@ impl RuleHooks {
     /// recalculates live pairs as the policy says. Call
     /// [`wake_edited`](Self::wake_edited) next, then step with these hooks,
     /// then [`after_step`](Self::after_step).
+    ///
+    /// # Panics
+    ///
+    /// If Rapier stepped with these hooks since the last `prepare` and
+    /// [`after_step`](Self::after_step) was not called after it.
     pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+        if self.prepared && *self.stepped.get_mut() {
+            missing("after_step", "after the last step");
+        }
+        self.prepared = true;
+        *self.stepped.get_mut() = false;
+        self.owe_freeze = self.unsettled;
         self.step += 1;
         self.stats = StepStats {
             hooked_colliders: self.hooked,
@@ -345,6 +449,10 @@ impl RuleHooks {
     /// frame.) Part of [`step`](Self::step); call it after
     /// [`prepare`](Self::prepare) when stepping a bare pipeline.
     pub fn freeze_manifolds(&mut self, narrow_phase: &NarrowPhase) {
+        self.owe_freeze = false;
+        if !std::mem::take(&mut self.unsettled) {
+            return;
+        }
         for (key, state) in self.pairs.iter() {
             if state.manifold != ManifoldUpdate::Never {
                 continue;
@@ -380,6 +488,16 @@ impl RuleHooks {
     /// during the step, forgets hooked pairs Rapier no longer has, and gives
     /// a rule to pairs of newly hooked colliders that Rapier made without
     /// asking the hook (pairs of resting bodies).
+    ///
+    /// Rapier may step several times between [`prepare`](Self::prepare)
+    /// and `after_step` (substeps, catch-up steps): the rules hold in each.
+    ///
+    /// # Panics
+    ///
+    /// If [`prepare`](Self::prepare) was not called before the step, or if
+    /// [`wake_edited`](Self::wake_edited) or
+    /// [`freeze_manifolds`](Self::freeze_manifolds) was left out when the
+    /// edits before it needed them.
     pub fn after_step(
         &mut self,
         narrow_phase: &NarrowPhase,
@@ -401,6 +519,15 @@ impl RuleHooks {
         joints: Option<Joints<'_>>,
         quiet: bool,
     ) {
+        if !std::mem::take(&mut self.prepared) {
+            missing("prepare", "before the step");
+        }
+        if !self.to_wake.is_empty() {
+            missing("wake_edited", "before the step, after prepare");
+        }
+        if self.owe_freeze {
+            missing("freeze_manifolds", "before the step, after prepare");
+        }
         let pending_empty = self
             .pending
             .get_mut()

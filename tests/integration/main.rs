@@ -2,6 +2,7 @@
 //! property tests against a naive reference resolver, and error values.
 
 mod alloc;
+mod boundary;
 mod determinism;
 mod driver;
 mod edges;

@@ -86,6 +86,11 @@ impl Events {
         }
     }
 
+    /// The events since the last call, in the order Rapier sent them.
+    pub fn take(&mut self) -> Vec<CollisionEvent> {
+        self.receiver.try_iter().collect()
+    }
+
     pub fn drain(&mut self) {
         while let Ok(event) = self.receiver.try_recv() {
             if self

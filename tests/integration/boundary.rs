@@ -1,0 +1,243 @@
+//! The step boundary: CCD substeps, several pipeline steps between
+//! `prepare` and `after_step` (what bevy_rapier does with substeps), the
+//! one-call bare pipeline, and the calls a bare-pipeline user can forget.
+
+use rapier_collision_rules::{CollisionRule, ManifoldUpdate, RuleHooks};
+use rapier3d::prelude::*;
+
+use crate::scenes::Events;
+
+/// A fast CCD ball crossing a thick slab, then stopped by a thin wall just
+/// past it: the wall's impact makes the CCD split the step into substeps
+/// while the ball is inside the slab.
+struct Crossing {
+    world: PhysicsWorld,
+    ball: RigidBodyHandle,
+    shot: ColliderHandle,
+    slab: ColliderHandle,
+}
+
+impl Crossing {
+    /// `hooked`: the slab passes the ball by a specific `NoResponse` rule;
+    /// otherwise by Rapier's own solver groups.
+    fn new(substeps: usize, hooked: bool) -> (Crossing, Option<RuleHooks>) {
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::ZERO;
+        world.integration_parameters.max_ccd_substeps = substeps;
+        let fixed = world.insert_body(RigidBodyBuilder::fixed());
+        let events = ActiveEvents::COLLISION_EVENTS;
+        let slab = ColliderBuilder::cuboid(1.5, 2.0, 2.0)
+            .translation(Vector::new(4.0, 0.0, 0.0))
+            .active_events(events);
+        let slab = if hooked {
+            slab
+        } else {
+            slab.solver_groups(InteractionGroups::none())
+        };
+        let slab = world.insert_collider(slab, Some(fixed));
+        world.insert_collider(
+            ColliderBuilder::cuboid(0.05, 2.0, 2.0).translation(Vector::new(6.0, 0.0, 0.0)),
+            Some(fixed),
+        );
+        let ball = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .linvel(Vector::new(70.0, 0.0, 0.0))
+                .ccd_enabled(true),
+        );
+        let shot = world.insert_collider(
+            ColliderBuilder::ball(0.25).active_events(events),
+            Some(ball),
+        );
+        let hooks = hooked.then(|| {
+            let mut hooks = RuleHooks::default();
+            hooks
+                .rules_mut()
+                .set_specific(slab, shot, CollisionRule::NoResponse);
+            hooks
+        });
+        let crossing = Crossing {
+            world,
+            ball,
+            shot,
+            slab,
+        };
+        (crossing, hooks)
+    }
+
+    /// One Rapier step with the hooks (or none).
+    fn pipeline_step(&mut self, hooks: Option<&RuleHooks>, events: &Events) {
+        let hooks: &dyn PhysicsHooks = match hooks {
+            Some(hooks) => hooks,
+            None => &(),
+        };
+        self.world.step_with_events(hooks, &events.collector);
+    }
+
+    /// What one run saw, step by step: the ball's position (bits), whether
+    /// the ball and the slab touched, and the events.
+    fn run(substeps: usize, per_bracket: usize, hooked: bool) -> Vec<String> {
+        let (mut scene, mut hooks) = Crossing::new(substeps, hooked);
+        let mut events = Events::new();
+        let mut seen = Vec::new();
+        for _ in 0..6 {
+            if let Some(hooks) = &mut hooks {
+                let w = &mut scene.world;
+                hooks.prepare(&w.bodies, &mut w.colliders);
+                hooks.freeze_manifolds(&w.narrow_phase);
+                hooks.wake_edited(&mut w.islands, &mut w.bodies);
+            }
+            for _ in 0..per_bracket {
+                scene.pipeline_step(hooks.as_ref(), &events);
+                let x = scene.world.bodies[scene.ball].translation().x;
+                let touching = scene
+                    .world
+                    .narrow_phase
+                    .contact_pair(scene.shot, scene.slab)
+                    .is_some_and(|pair| pair.has_any_active_contact());
+                seen.push(format!(
+                    "x {x} ({:#x}), touching {touching}, events {:?}",
+                    x.to_bits(),
+                    events.take()
+                ));
+            }
+            if let Some(hooks) = &mut hooks {
+                let w = &scene.world;
+                hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
+                assert!(hooks.hooked_count() > 0, "the NoResponse pair is hooked");
+            }
+        }
+        seen
+    }
+}
+
+/// A hooked `NoResponse` pair's contacts and events equal those of the
+/// same pair excluded by Rapier's solver groups, step by step, with 1 to 4
+/// CCD substeps and 1 or 3 Rapier steps between `prepare` and `after_step`.
+#[test]
+fn no_response_holds_across_ccd_substeps_and_pipeline_steps() {
+    for substeps in 1..=4 {
+        for per_bracket in [1, 3] {
+            let plain = Crossing::run(substeps, per_bracket, false);
+            assert!(
+                plain.iter().any(|s| s.contains("touching true")),
+                "the ball passes through the slab: {plain:#?}"
+            );
+            let hooked = Crossing::run(substeps, per_bracket, true);
+            for (step, (plain, hooked)) in plain.iter().zip(&hooked).enumerate() {
+                assert_eq!(
+                    hooked, plain,
+                    "{substeps} CCD substeps, {per_bracket} steps per bracket, step {step}: \
+                     hooked against solver groups"
+                );
+            }
+        }
+    }
+}
+
+/// `step_pipeline` on bare sets steps exactly as `step` on a `PhysicsWorld`.
+#[test]
+fn step_pipeline_is_step_on_bare_sets() {
+    let (mut stepped, hooks1) = Crossing::new(2, true);
+    let (mut bare, hooks2) = Crossing::new(2, true);
+    let (mut hooks1, mut hooks2) = (hooks1.expect("hooks"), hooks2.expect("hooks"));
+    for step in 0..8 {
+        hooks1.step(&mut stepped.world);
+        let w = &mut bare.world;
+        hooks2.step_pipeline(
+            &mut w.physics_pipeline,
+            w.gravity,
+            &w.integration_parameters,
+            &mut w.islands,
+            &mut w.broad_phase,
+            &mut w.narrow_phase,
+            &mut w.bodies,
+            &mut w.colliders,
+            &mut w.impulse_joints,
+            &mut w.multibody_joints,
+            &mut w.soft_bodies,
+            &mut w.ccd_solver,
+            &(),
+        );
+        let x = |s: &Crossing| s.world.bodies[s.ball].translation().x.to_bits();
+        assert_eq!(x(&stepped), x(&bare), "step {step}: the ball's x diverged");
+        assert_eq!(
+            hooks1.pair_rule(stepped.shot, stepped.slab),
+            hooks2.pair_rule(bare.shot, bare.slab),
+            "step {step}: the live pair"
+        );
+    }
+}
+
+/// What a bare-pipeline user can leave out, and the call the panic names.
+#[test]
+fn a_forgotten_call_fails_loudly_and_names_it() {
+    // (what the user does, the call the message names)
+    type Misuse = fn(&mut Crossing, &mut RuleHooks);
+    let table: [(&str, Misuse, &str); 4] = [
+        (
+            "after_step without prepare",
+            |s, hooks| {
+                s.pipeline_step(Some(hooks), &Events::new());
+                let w = &s.world;
+                hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
+            },
+            "RuleHooks::prepare",
+        ),
+        (
+            "prepare twice around a step",
+            |s, hooks| {
+                let w = &mut s.world;
+                hooks.prepare(&w.bodies, &mut w.colliders);
+                hooks.wake_edited(&mut w.islands, &mut w.bodies);
+                s.pipeline_step(Some(hooks), &Events::new());
+                let w = &mut s.world;
+                hooks.prepare(&w.bodies, &mut w.colliders);
+            },
+            "RuleHooks::after_step",
+        ),
+        (
+            "a pair override, without wake_edited",
+            |s, hooks| {
+                assert!(hooks.set_pair_rule(s.shot, s.slab, CollisionRule::Normal));
+                let w = &mut s.world;
+                hooks.prepare(&w.bodies, &mut w.colliders);
+                s.pipeline_step(Some(hooks), &Events::new());
+                let w = &s.world;
+                hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
+            },
+            "RuleHooks::wake_edited",
+        ),
+        (
+            "a Never setting without freeze_manifolds",
+            |s, hooks| {
+                assert!(hooks.set_manifold_update(s.shot, s.slab, ManifoldUpdate::Never));
+                let w = &mut s.world;
+                hooks.prepare(&w.bodies, &mut w.colliders);
+                hooks.wake_edited(&mut w.islands, &mut w.bodies);
+                s.pipeline_step(Some(hooks), &Events::new());
+                let w = &s.world;
+                hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
+            },
+            "RuleHooks::freeze_manifolds",
+        ),
+    ];
+    for (misuse, act, names) in table {
+        let (mut scene, hooks) = Crossing::new(1, true);
+        let mut hooks = hooks.expect("hooks");
+        // Three good steps: the ball is inside the slab, the pair live.
+        for _ in 0..3 {
+            hooks.step(&mut scene.world);
+        }
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            act(&mut scene, &mut hooks);
+        }));
+        let message = outcome
+            .err()
+            .and_then(|panic| panic.downcast::<String>().ok())
+            .unwrap_or_else(|| panic!("{misuse}: no panic"));
+        assert!(
+            message.contains(names),
+            "{misuse}: the message names {names}: {message}"
+        );
+    }
+}

@@ -40,7 +40,8 @@ pub enum RuleError {
         parent: RigidBodyHandle,
     },
     /// The handle names an object Rapier has removed: the rule set has
-    /// already seen a newer object in the same slot.
+    /// forgotten it (the hooks do so for removed objects the rules reached)
+    /// or has seen a newer object in the same slot.
     #[error("{node:?} names a removed object")]
     Removed {
         /// The dead handle.

@@ -22,6 +22,11 @@ impl Hierarchy {
         self.parents.get(child).copied()
     }
 
+    /// Whether the map has seen a newer body in `body`'s slot.
+    pub(crate) fn is_superseded(&self, body: RigidBodyHandle) -> bool {
+        self.parents.is_superseded(body)
+    }
+
     pub(crate) fn set_parent(
         &mut self,
         child: RigidBodyHandle,

@@ -19,6 +19,7 @@ mod rule_set;
 #[cfg(feature = "serde")]
 mod snapshot;
 mod stats;
+mod tombstones;
 
 pub use error::RuleError;
 pub use group::CollisionGroup;

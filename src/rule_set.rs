@@ -7,6 +7,7 @@ use rapier3d::prelude::{ColliderHandle, ColliderSet, RigidBodyHandle, RigidBodyS
 use crate::group::GroupTable;
 use crate::hierarchy::Hierarchy;
 use crate::node::HandleMap;
+use crate::tombstones::Tombstones;
 use crate::{CollisionGroup, CollisionRule, Node, RuleError};
 
 /// The rules one node carries. Several nodes may share one record.
@@ -194,6 +195,8 @@ pub struct CollisionRuleSet {
     changes: Changes,
     /// How many specific entries name each node (the planner asks).
     named: HashMap<Node, u32>,
+    /// The handles forgotten as removed: every editing verb refuses them.
+    removed: Tombstones,
 }
 
 impl Default for CollisionRuleSet {
@@ -207,6 +210,7 @@ impl Default for CollisionRuleSet {
             hierarchy: Hierarchy::default(),
             changes: Changes::default(),
             named: HashMap::new(),
+            removed: Tombstones::default(),
         }
     }
 }
@@ -425,18 +429,22 @@ impl CollisionRuleSet {
     }
 
     /// Whether `node` names an object Rapier has removed, as far as this set
-    /// can tell: it has seen a newer object in the same slot.
-    fn is_superseded(&self, node: Node) -> bool {
-        match node {
-            Node::Collider(handle) => self.collider_records.is_superseded(handle),
-            Node::Body(handle) => self.body_records.is_superseded(handle),
-        }
+    /// can tell: it forgot the object as removed, or has seen a newer object
+    /// in the same slot (`docs/semantics.md`, "Handles of removed objects").
+    pub(crate) fn is_removed(&self, node: Node) -> bool {
+        self.removed.holds(node)
+            || match node {
+                Node::Collider(handle) => self.collider_records.is_superseded(handle),
+                Node::Body(handle) => {
+                    self.body_records.is_superseded(handle) || self.hierarchy.is_superseded(handle)
+                }
+            }
     }
 
     /// The record of `node`, created empty if it has none; `None` for a
     /// handle of a removed object (edits through it are ignored).
     fn record_mut(&mut self, node: Node) -> Option<&mut Record> {
-        if self.is_superseded(node) {
+        if self.is_removed(node) {
             return None;
         }
         let id = match self.record_id(node) {
@@ -567,7 +575,7 @@ impl CollisionRuleSet {
     pub fn set_group(&mut self, node: impl Into<Node>, group: Option<CollisionGroup>) {
         self.check_groups(group.as_slice());
         let node = node.into();
-        if group.is_none() && self.record_id(node).is_none() {
+        if (group.is_none() && self.record_id(node).is_none()) || self.is_removed(node) {
             return;
         }
         if let Some(record) = self.record_mut(node) {
@@ -585,7 +593,8 @@ impl CollisionRuleSet {
     /// The node's personal rule (stage 2); `Defer` clears it.
     pub fn set_personal(&mut self, node: impl Into<Node>, rule: CollisionRule) {
         let node = node.into();
-        if rule == CollisionRule::Defer && self.record_id(node).is_none() {
+        if (rule == CollisionRule::Defer && self.record_id(node).is_none()) || self.is_removed(node)
+        {
             return;
         }
         if let Some(record) = self.record_mut(node) {
@@ -625,6 +634,8 @@ impl CollisionRuleSet {
         let (node, other) = (node.into(), other.into());
         if rule == CollisionRule::Defer {
             self.remove_specific(node, other);
+        } else if self.is_removed(node) || self.is_removed(other) {
+            // An entry of or about a removed object would name nothing.
         } else if let Some(record) = self.record_mut(node) {
             if record.specific.insert(other, rule).is_none() {
                 *self.named.entry(other).or_default() += 1;
@@ -673,7 +684,7 @@ impl CollisionRuleSet {
     /// ```
     pub fn share_rules(&mut self, from: impl Into<Node>, to: impl Into<Node>) {
         let (from, to) = (from.into(), to.into());
-        if from == to || self.record_mut(from).is_none() || self.is_superseded(to) {
+        if from == to || self.is_removed(to) || self.record_mut(from).is_none() {
             return;
         }
         let id = self.record_id(from).expect("record_mut made one");
@@ -720,6 +731,9 @@ impl CollisionRuleSet {
         colliders: &ColliderSet,
     ) {
         let node = node.into();
+        if self.is_removed(node) {
+            return;
+        }
         for descendant in self.descendants(node, bodies, colliders) {
             self.share_rules(node, descendant);
         }
@@ -799,8 +813,9 @@ impl CollisionRuleSet {
 /// The parent map.
 impl CollisionRuleSet {
     /// Makes `parent` the parent of `child` in the crate's parent map,
-    /// replacing any earlier parent. A body as its own parent, or a parent
-    /// that already lies below `child`, is refused and changes nothing.
+    /// replacing any earlier parent. A handle of a removed object
+    /// ([`RuleError::Removed`]), a body as its own parent, or a parent that
+    /// already lies below `child` is refused and changes nothing.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -822,6 +837,13 @@ impl CollisionRuleSet {
         child: RigidBodyHandle,
         parent: RigidBodyHandle,
     ) -> Result<(), RuleError> {
+        for body in [child, parent] {
+            if self.is_removed(Node::Body(body)) {
+                return Err(RuleError::Removed {
+                    node: Node::Body(body),
+                });
+            }
+        }
         let former = self.hierarchy.parent(child);
         self.hierarchy.set_parent(child, parent)?;
         self.changes.parents = true;
@@ -863,7 +885,10 @@ impl CollisionRuleSet {
     /// every parent link that names it (its children become roots).
     ///
     /// [`RuleHooks`](crate) does this by itself for objects removed through
-    /// Rapier; call it when you use the rule set alone.
+    /// Rapier; call it when you use the rule set alone. From then on the
+    /// handle is dead to the rule set: `set_parent` refuses it with
+    /// [`RuleError::Removed`] and the other editing verbs ignore it
+    /// (`docs/semantics.md`, "Handles of removed objects").
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -877,6 +902,7 @@ impl CollisionRuleSet {
     /// rules.remove_node(b);
     /// assert_eq!(rules.specific(a, b), CollisionRule::Defer);
     /// assert_eq!(rules.parent(a), None);
+    /// assert_eq!(rules.set_parent(a, b), Err(RuleError::Removed { node: b.into() }));
     /// # Ok::<(), RuleError>(())
     /// ```
     pub fn remove_node(&mut self, node: impl Into<Node>) {
@@ -907,6 +933,7 @@ impl CollisionRuleSet {
             }
             self.hierarchy.forget(body);
         }
+        self.removed.bury(node);
     }
 
     /// Forgets every node the rule set knows that is missing from the Rapier

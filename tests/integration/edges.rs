@@ -189,6 +189,133 @@ fn removed_objects_lend_no_rules_to_readers_that_take_the_world() {
     assert_eq!(why.rule, rules.resolve(bodies, colliders, calf, loose));
 }
 
+/// Once the hooks forget an object Rapier removed, every editing verb
+/// treats its handle alike: the verbs that return a `Result` refuse it with
+/// `RuleError::Removed`, the others change nothing at all.
+#[test]
+fn every_verb_refuses_a_handle_the_hooks_forgot() {
+    use rapier_collision_rules::{CollisionRuleSet, Node, RuleError};
+    let mut world = PhysicsWorld::new();
+    let mut limb = || {
+        let body = world.insert_body(RigidBodyBuilder::dynamic());
+        let collider = world.insert_collider(ColliderBuilder::ball(0.2), Some(body));
+        (body, collider)
+    };
+    let ((gone, gone_ball), (kept, _), (child, _)) = (limb(), limb(), limb());
+    let mut hooks = RuleHooks::default();
+    let rules = hooks.rules_mut();
+    let group = rules.create_group();
+    rules.set_personal(gone, NoResponse);
+    rules.set_group(gone_ball, Some(group));
+    rules.set_specific(kept, gone, NoPair);
+    rules.set_personal(kept, NoContacts);
+    rules.set_group(kept, Some(group));
+    rules.set_parent(child, kept).expect("a tree");
+    hooks.step(&mut world);
+    world.remove_body(gone);
+    hooks.step(&mut world);
+    assert_eq!(hooks.rules().personal(gone), Defer, "the hooks forgot it");
+
+    let removed = |body| {
+        Err(RuleError::Removed {
+            node: Node::Body(body),
+        })
+    };
+    type Verb = fn(&mut CollisionRuleSet, &PhysicsWorld, [Node; 4]) -> Result<(), RuleError>;
+    // (verb, what it answers); nodes: [gone, gone's collider, kept, child]
+    let table: [(&str, Verb, Result<(), RuleError>); 10] = [
+        (
+            "set_parent(gone, kept)",
+            |r, _, [g, _, k, _]| r.set_parent(body(g), body(k)),
+            removed(gone),
+        ),
+        (
+            "set_parent(child, gone)",
+            |r, _, [g, _, _, c]| r.set_parent(body(c), body(g)),
+            removed(gone),
+        ),
+        (
+            "set_parent(gone, gone)",
+            |r, _, [g, ..]| r.set_parent(body(g), body(g)),
+            removed(gone),
+        ),
+        (
+            "set_personal(gone)",
+            |r, _, [g, ..]| {
+                r.set_personal(g, NoPair);
+                Ok(())
+            },
+            Ok(()),
+        ),
+        (
+            "set_group(gone's collider)",
+            |r, _, [_, b, k, _]| {
+                r.set_group(b, r.group(k));
+                Ok(())
+            },
+            Ok(()),
+        ),
+        (
+            "set_specific(gone, kept)",
+            |r, _, [g, _, k, _]| {
+                r.set_specific(g, k, NoPair);
+                Ok(())
+            },
+            Ok(()),
+        ),
+        (
+            "set_specific(kept, gone)",
+            |r, _, [g, _, k, _]| {
+                r.set_specific(k, g, NoPair);
+                Ok(())
+            },
+            Ok(()),
+        ),
+        (
+            "share_rules(kept, gone)",
+            |r, _, [g, _, k, _]| {
+                r.share_rules(k, g);
+                Ok(())
+            },
+            Ok(()),
+        ),
+        (
+            "share_rules(gone, kept)",
+            |r, _, [g, _, k, _]| {
+                r.share_rules(g, k);
+                Ok(())
+            },
+            Ok(()),
+        ),
+        (
+            "set_rules_recursive(gone)",
+            |r, w, [g, ..]| {
+                r.set_rules_recursive(g, &w.bodies, &w.colliders);
+                Ok(())
+            },
+            Ok(()),
+        ),
+    ];
+    fn body(node: Node) -> RigidBodyHandle {
+        match node {
+            Node::Body(body) => body,
+            Node::Collider(_) => unreachable!("a body"),
+        }
+    }
+    let nodes = [gone.into(), gone_ball.into(), kept.into(), child.into()];
+    for (verb, act, answer) in table {
+        let mut rules = hooks.rules().clone();
+        let before = format!("{rules:?}");
+        assert_eq!(act(&mut rules, &world, nodes), answer, "{verb}");
+        assert_eq!(format!("{rules:?}"), before, "{verb} changed the rule set");
+        assert_eq!(
+            rules.validate(&world.bodies, &world.colliders),
+            Ok(()),
+            "{verb}"
+        );
+    }
+}
+
 /// A body added under a node after `set_rules_recursive` does not share
 /// the node's record (only the descendants of that moment do) but takes
 /// its group through the parent map; re-parenting a body that shares a

@@ -206,6 +206,8 @@ impl Run {
                     if let Some(record) = self.model.owner.get(&node) {
                         self.model.records[*record].specific.remove(&other);
                     }
+                } else if self.model.is_removed(other) {
+                    // An entry about a removed object names nothing.
                 } else if let Some(record) = self.model.record_mut(node) {
                     record.specific.insert(other, *r);
                 }
@@ -227,7 +229,12 @@ impl Run {
                 let (rules, model) = (&mut self.rules, &mut self.model);
                 let (bodies, colliders) = (&self.world.bodies, &self.world.colliders);
                 rules.set_rules_recursive(node, bodies, colliders);
-                for descendant in model.descendants(node, bodies) {
+                let descendants = if model.is_removed(node) {
+                    Vec::new()
+                } else {
+                    model.descendants(node, bodies)
+                };
+                for descendant in descendants {
                     model.share(node, descendant);
                 }
             }

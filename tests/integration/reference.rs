@@ -22,6 +22,8 @@ pub struct Model {
     pub parents: HashMap<RigidBodyHandle, RigidBodyHandle>,
     pub table: HashMap<(CollisionGroup, CollisionGroup), CollisionRule>,
     pub default_rule: CollisionRule,
+    /// Every node forgotten as removed.
+    pub forgotten: Vec<Node>,
 }
 
 impl Default for Model {
@@ -33,6 +35,7 @@ impl Default for Model {
             parents: HashMap::new(),
             table: HashMap::from([((k, k), CollisionRule::NoPair)]),
             default_rule: CollisionRule::Normal,
+            forgotten: Vec::new(),
         }
     }
 }
@@ -82,8 +85,19 @@ impl Model {
         }
     }
 
+    /// A handle of a removed object: forgotten (it or a newer generation of
+    /// its slot), or its slot holds a newer generation in a side table.
+    pub fn is_removed(&self, node: Node) -> bool {
+        let (index, generation) = Self::node_raw(node);
+        self.forgotten.iter().any(|&dead| {
+            let (i, g) = Self::node_raw(dead);
+            i == index && g >= generation
+        }) || Self::superseded(&self.owner, node, Self::node_raw)
+            || matches!(node, Node::Body(b) if Self::superseded(&self.parents, b, |b| b.into_raw_parts()))
+    }
+
     pub fn record_mut(&mut self, node: Node) -> Option<&mut Record> {
-        if Self::superseded(&self.owner, node, Self::node_raw) {
+        if self.is_removed(node) {
             return None;
         }
         let index = match self.owner.get(&node) {
@@ -103,10 +117,7 @@ impl Model {
     }
 
     pub fn share(&mut self, from: Node, to: Node) {
-        if from == to || self.record_mut(from).is_none() {
-            return;
-        }
-        if Self::superseded(&self.owner, to, Self::node_raw) {
+        if from == to || self.is_removed(to) || self.record_mut(from).is_none() {
             return;
         }
         let index = self.owner[&from];
@@ -118,13 +129,15 @@ impl Model {
         child: RigidBodyHandle,
         parent: RigidBodyHandle,
     ) -> Result<(), RuleError> {
+        for body in [child, parent] {
+            if self.is_removed(Node::Body(body)) {
+                return Err(RuleError::Removed {
+                    node: Node::Body(body),
+                });
+            }
+        }
         if child == parent {
             return Err(RuleError::SelfParent { body: child });
-        }
-        if Self::superseded(&self.parents, child, |b| b.into_raw_parts()) {
-            return Err(RuleError::Removed {
-                node: Node::Body(child),
-            });
         }
         let mut up = Some(parent);
         while let Some(body) = up {
@@ -171,6 +184,7 @@ impl Model {
     }
 
     pub fn forget(&mut self, node: Node) {
+        self.forgotten.push(node);
         self.owner.remove(&node);
         for record in &mut self.records {
             record.specific.remove(&node);

@@ -7,7 +7,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use hashbrown::HashMap;
 use rapier3d::prelude::{
-    ColliderHandle, Pose, RigidBodyHandle, RigidBodySet, SolverContact, Vector,
+    ColliderHandle, ColliderSet, Pose, RigidBodyHandle, RigidBodySet, ShapeType, SolverContact,
+    Vector,
 };
 
 use crate::CollisionRule;
@@ -89,10 +90,40 @@ pub(crate) struct PairState {
     /// was computed: the default groups follow the body types, which may
     /// change on a body the hooks do not watch.
     pub(crate) kinds: (bool, bool),
+    /// A collider of the pair is made of parts (see [`made_of_parts`]):
+    /// `ManifoldUpdate::Never` is refused for it.
+    pub(crate) parts: bool,
+}
+
+/// Whether a collider of the pair is made of parts: a triangle mesh,
+/// polyline, height field, voxel set or compound. Rapier keeps one
+/// manifold per touching part, and parts come and go as the bodies move,
+/// so contacts frozen per manifold could not be kept
+/// (`docs/semantics.md`, "Manifold settings").
+pub(crate) fn made_of_parts(colliders: &ColliderSet, key: PairKey) -> bool {
+    let parts = |c: ColliderHandle| {
+        colliders.get(c).is_some_and(|collider| {
+            matches!(
+                collider.shape().shape_type(),
+                ShapeType::TriMesh
+                    | ShapeType::Polyline
+                    | ShapeType::HeightField
+                    | ShapeType::Voxels
+                    | ShapeType::Compound
+            )
+        })
+    };
+    let (a, b) = key.colliders();
+    parts(a) || parts(b)
 }
 
 impl PairState {
-    pub(crate) fn new(computed: CollisionRule, step: u64, kinds: (bool, bool)) -> PairState {
+    pub(crate) fn new(
+        computed: CollisionRule,
+        step: u64,
+        kinds: (bool, bool),
+        parts: bool,
+    ) -> PairState {
         PairState {
             computed,
             overridden: None,
@@ -102,6 +133,7 @@ impl PairState {
             frozen: Mutex::new(None),
             absent: false,
             kinds,
+            parts,
         }
     }
 

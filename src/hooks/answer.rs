@@ -161,7 +161,7 @@ impl RuleHooks {
             let (a, b) = key.colliders();
             let rule = self.calculate(context.bodies, context.colliders, a, b);
             self.pending()
-                .insert(key, PairState::new(rule, self.step, kinds));
+                .insert(key, PairState::new(rule, self.step, kinds, state.parts));
             rule
         });
         let again = self.answered_by_ccd(context, state, rule, state.manifold);
@@ -188,7 +188,8 @@ impl RuleHooks {
         let (a, b) = key.colliders();
         let rule = self.calculate(context.bodies, context.colliders, a, b);
         let kinds = kinds_in(context, key);
-        let state = PairState::new(rule, self.step, kinds);
+        let parts = pairs::made_of_parts(context.colliders, key);
+        let state = PairState::new(rule, self.step, kinds, parts);
         // Later answers in this step at the same poses are the CCD's.
         state.poses.store(poses(context), Ordering::Relaxed);
         self.pending().entry(key).or_insert(state);

@@ -17,9 +17,10 @@ use super::RuleHooks;
 use super::upkeep::{Joints, filters_pass, kinds_of, pair_exists};
 
 /// A pair's rule as the default calculation gives it, with whether each
-/// body is dynamic; `None` when Rapier holds no such pair.
-type Native = Option<(CollisionRule, (bool, bool))>;
-use crate::pairs::{ManifoldUpdate, PairKey, PairState};
+/// body is dynamic and whether a collider is made of parts; `None` when
+/// Rapier holds no such pair.
+type Native = Option<(CollisionRule, (bool, bool), bool)>;
+use crate::pairs::{ManifoldUpdate, PairKey, PairState, made_of_parts};
 use crate::{CollisionRule, Node};
 
 /// What Rapier holds of a world, for the live-pair queries that answer on
@@ -256,6 +257,13 @@ impl RuleHooks {
     /// (see [`pair_rule`](Self::pair_rule));
     /// [`set_manifold_update_in`](Self::set_manifold_update_in) reaches
     /// every pair.
+    ///
+    /// `ManifoldUpdate::Never` is refused the same way (`false`, nothing
+    /// changed) when a collider of the pair is made of parts: a triangle
+    /// mesh, polyline, height field, voxel set or compound. Rapier keeps
+    /// one manifold per touching part, and parts come and go as the bodies
+    /// move, so frozen contacts could not be kept (`docs/semantics.md`,
+    /// "Manifold settings").
     pub fn set_manifold_update(
         &mut self,
         a: ColliderHandle,
@@ -285,6 +293,13 @@ impl RuleHooks {
         native: Native,
         update: ManifoldUpdate,
     ) -> bool {
+        let parts = match self.pairs.get(PairKey::new(a, b)) {
+            Some(state) => state.parts,
+            None => native.is_some_and(|(.., parts)| parts),
+        };
+        if update == ManifoldUpdate::Never && parts {
+            return false;
+        }
         self.unsettled |= update == ManifoldUpdate::Never;
         self.edit_pair(a, b, native, |state| {
             state.manifold = update;
@@ -316,8 +331,11 @@ impl RuleHooks {
 
     /// [`rapier_rule`](Self::rapier_rule), with the body kinds of the pair.
     fn rapier_state(&self, world: WorldRef<'_>, a: ColliderHandle, b: ColliderHandle) -> Native {
-        let kinds = kinds_of(world.bodies, world.colliders, PairKey::new(a, b));
-        self.rapier_rule(world, a, b).map(|rule| (rule, kinds))
+        let key = PairKey::new(a, b);
+        let kinds = kinds_of(world.bodies, world.colliders, key);
+        let parts = made_of_parts(world.colliders, key);
+        self.rapier_rule(world, a, b)
+            .map(|rule| (rule, kinds, parts))
     }
 
     /// The rule of a pair Rapier holds now, decided natively (not hooked);
@@ -345,9 +363,9 @@ impl RuleHooks {
     ) -> Option<&mut PairState> {
         let key = PairKey::new(a, b);
         if self.pairs.get(key).is_none() {
-            let (rule, kinds) = native.filter(|&(r, _)| r != CollisionRule::NoPair)?;
+            let (rule, kinds, parts) = native.filter(|&(r, ..)| r != CollisionRule::NoPair)?;
             self.pairs
-                .insert(key, PairState::new(rule, self.step, kinds));
+                .insert(key, PairState::new(rule, self.step, kinds, parts));
         }
         self.pairs
             .get_mut(key)

@@ -13,7 +13,7 @@ use rapier3d::prelude::*;
 
 use super::{RecalculationPolicy, RuleHooks};
 use crate::native::{self, ColliderPlan, Request};
-use crate::pairs::{ManifoldUpdate, PairKey, PairState};
+use crate::pairs::{ManifoldUpdate, PairKey, PairState, made_of_parts};
 use crate::project::{Settings, Written, body_types};
 use crate::{FullPass, Node, StepStats};
 
@@ -591,8 +591,9 @@ impl RuleHooks {
             let (a, b) = key.colliders();
             let rule = self.calculate(bodies, colliders, a, b);
             let kinds = kinds_of(bodies, colliders, key);
+            let parts = made_of_parts(colliders, key);
             self.pairs
-                .insert(key, PairState::new(rule, self.step, kinds));
+                .insert(key, PairState::new(rule, self.step, kinds, parts));
         }
 
         // Forget the hooked pairs Rapier no longer has, looked up in Rapier's

@@ -1,7 +1,7 @@
 //! The edges of the contract: answers the user gives (the pair-created
 //! callback, `set_pair_rule`) between two non-dynamic bodies.
 
-use rapier_collision_rules::{CollisionRule, RuleHooks};
+use rapier_collision_rules::{CollisionRule, ManifoldUpdate, RuleHooks};
 use rapier3d::prelude::*;
 
 use crate::scenes::Scene;
@@ -419,5 +419,106 @@ fn a_bullet_crossing_a_hooked_sensor_gets_plain_rapiers_events() {
             plain,
             "{rule:?}: (started, stopped, passed) against plain Rapier"
         );
+    }
+}
+
+/// `ManifoldUpdate::Never` set while a body rests: the frozen contacts
+/// hold it up on a box floor; on a triangle-mesh floor and for a compound
+/// body, whose manifolds Rapier keeps per triangle or part, the setting is
+/// refused and changes nothing (the body rests on live contacts).
+#[test]
+fn never_holds_on_boxes_and_is_refused_for_meshes_and_compounds() {
+    // A 20 x 20 floor of 2 x 2 squares, two triangles each, at y = 0.
+    let mesh_floor = || {
+        let n = 10;
+        let mut vertices = Vec::new();
+        let mut triangles = Vec::new();
+        for i in 0..=n {
+            for j in 0..=n {
+                vertices.push(Vector::new(
+                    i as f32 * 2.0 - 10.0,
+                    0.0,
+                    j as f32 * 2.0 - 10.0,
+                ));
+            }
+        }
+        for i in 0..n {
+            for j in 0..n {
+                let at = |i: u32, j: u32| i * (n + 1) + j;
+                triangles.push([at(i, j), at(i, j + 1), at(i + 1, j)]);
+                triangles.push([at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)]);
+            }
+        }
+        ColliderBuilder::trimesh(vertices, triangles).expect("a valid mesh")
+    };
+    let box_floor =
+        || ColliderBuilder::cuboid(10.0, 0.5, 10.0).translation(Vector::new(0.0, -0.5, 0.0));
+    let cube = || ColliderBuilder::cuboid(0.5, 0.5, 0.5);
+    // Two boxes side by side, 1.6 wide.
+    let compound = || {
+        let part = SharedShape::cuboid(0.4, 0.5, 0.5);
+        ColliderBuilder::compound(vec![
+            (
+                Pose::from_translation(Vector::new(-0.4, 0.0, 0.0)),
+                part.clone(),
+            ),
+            (Pose::from_translation(Vector::new(0.4, 0.0, 0.0)), part),
+        ])
+    };
+    type Build = fn() -> ColliderBuilder;
+    // (scene, floor, body, whether Never is accepted)
+    let table: [(&str, Build, Build, bool); 4] = [
+        ("a cube on a box floor", box_floor, cube, true),
+        ("a compound on a box floor", box_floor, compound, false),
+        ("a cube on a mesh floor", mesh_floor, cube, false),
+        ("a compound on a mesh floor", mesh_floor, compound, false),
+    ];
+    for (scene, floor, body_shape, accepted) in table {
+        for with_world in [true, false] {
+            let mut world = PhysicsWorld::new();
+            let ground = world.insert_body(RigidBodyBuilder::fixed());
+            let floor = world.insert_collider(floor(), Some(ground));
+            // Over a square's diagonal, slightly turned: several triangles.
+            let body = world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .translation(Vector::new(1.0, 0.6, 1.0))
+                    .rotation(Vector::new(0.0, 0.3, 0.0))
+                    // Awake, so that Rapier updates its contacts every step.
+                    .can_sleep(false),
+            );
+            let collider = world.insert_collider(body_shape(), Some(body));
+            let mut hooks = RuleHooks::default();
+            if !with_world {
+                // A live override makes the pair hooked, for the world-free verb.
+                hooks.rules_mut().set_specific(collider, floor, Normal);
+            }
+            for _ in 0..60 {
+                hooks.step(&mut world);
+            }
+            let rest = world.bodies[body].translation().y;
+            let answer = if with_world {
+                hooks.set_manifold_update_in(&world, collider, floor, ManifoldUpdate::Never)
+            } else {
+                hooks.set_manifold_update(collider, floor, ManifoldUpdate::Never)
+            };
+            assert_eq!(
+                answer, accepted,
+                "{scene} (world: {with_world}): Never accepted"
+            );
+            let mut lowest = rest;
+            for _ in 0..240 {
+                hooks.step(&mut world);
+                lowest = lowest.min(world.bodies[body].translation().y);
+            }
+            assert_eq!(
+                hooks.manifold_update(collider, floor) == Some(ManifoldUpdate::Never),
+                accepted,
+                "{scene} (world: {with_world}): the pair's setting is Never"
+            );
+            assert!(
+                rest - lowest < 0.02,
+                "{scene} (world: {with_world}): the body sank: rest y = {rest}, lowest y = {lowest}"
+            );
+        }
     }
 }

@@ -137,6 +137,68 @@ fn a_joint_without_contacts_leaves_no_live_pair() {
     }
 }
 
+/// A fast body tethered to a fixed wall by a slack rope joint (contacts
+/// enabled or not) crosses the wall within one step: Rapier's CCD ignores
+/// the joint's contact setting (plain Rapier holds the bullet up for one
+/// step even with the joint's contacts off), so only the rule keeps the
+/// sweep from stopping the body. Under `NoResponse`, `NoContacts` and `NoPair` it flies
+/// exactly as with the wall's collider absent, CCD on the body or off.
+#[test]
+fn a_jointed_pair_without_response_passes_under_ccd() {
+    let run = |rule: Option<CollisionRule>, wall: bool, ccd: bool, contacts: bool| {
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::ZERO;
+        let anchor =
+            world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(5.0, 0.0, 0.0)));
+        let plate = wall
+            .then(|| world.insert_collider(ColliderBuilder::cuboid(0.05, 2.0, 2.0), Some(anchor)));
+        let bullet = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .linvel(Vector::new(400.0, 0.0, 0.0))
+                .ccd_enabled(ccd),
+        );
+        let shot = world.insert_collider(ColliderBuilder::ball(0.05), Some(bullet));
+        let rope = RopeJointBuilder::new(1000.0).contacts_enabled(contacts);
+        world.insert_impulse_joint(bullet, anchor, rope);
+        let mut hooks = RuleHooks::default();
+        if let (Some(rule), Some(plate)) = (rule, plate) {
+            hooks.rules_mut().set_specific(shot, plate, rule);
+        }
+        for _ in 0..4 {
+            hooks.step(&mut world);
+        }
+        world.bodies[bullet].translation().x
+    };
+    for ccd in [true, false] {
+        for contacts in [false, true] {
+            let what = format!("ccd {ccd}, contacts {contacts}");
+            let free = run(None, false, ccd, contacts);
+            assert!(free > 20.0, "{what}: the bullet flies on: x = {free}");
+            // Plain Rapier: the wall stops the bullet; with the joint's
+            // contacts off, only the CCD's sweep of one step does.
+            let plain = run(None, true, ccd, contacts);
+            assert!(
+                plain < free,
+                "{what}: the wall holds the bullet up: x = {plain}"
+            );
+            let normal = run(Some(Normal), true, ccd, contacts);
+            assert_eq!(
+                normal.to_bits(),
+                plain.to_bits(),
+                "{what}: Normal is plain Rapier: x = {normal}, plain {plain}"
+            );
+            for rule in [NoResponse, NoContacts, NoPair] {
+                let x = run(Some(rule), true, ccd, contacts);
+                assert_eq!(
+                    x.to_bits(),
+                    free.to_bits(),
+                    "{what}, {rule:?}: x = {x}, without the wall {free}"
+                );
+            }
+        }
+    }
+}
+
 /// The readers that take the world read no rules of an object Rapier has
 /// removed, as `resolve` reads none: its group is the default one, and a
 /// body under a removed one is no descendant of the bodies above it.

@@ -966,6 +966,12 @@ impl CollisionRuleSet {
         missing.len()
     }
 
+    /// Logs "everything changed": hooks that receive this rule set whole
+    /// (a loaded one put in place of another) recalculate and plan all.
+    pub(crate) fn mark_all_changed(&mut self) {
+        self.changes.everything();
+    }
+
     /// Whether anything was edited since the last [`take_changes`](Self::take_changes).
     pub(crate) fn has_changes(&self) -> bool {
         !self.changes.is_empty()

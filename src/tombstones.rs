@@ -5,9 +5,10 @@
 use crate::Node;
 use crate::node::Handle;
 
-/// Per Rapier slot, one more than the newest generation forgotten as
-/// removed (0: none). Rapier's handles are generational, so every older
-/// generation of the slot is dead too, and a newer one is a new object.
+/// Per Rapier slot, the generation last forgotten as removed, plus one (0:
+/// none). Only that exact handle is dead here: a handle of another
+/// generation may be one Rapier has yet to hand out (a corrupt save can
+/// name one), and burying it must not kill the live object of its slot.
 /// One number per slot the rules ever named: bounded like Rapier's arenas.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Tombstones {
@@ -16,33 +17,29 @@ pub(crate) struct Tombstones {
 }
 
 impl Tombstones {
-    /// Remembers that `node`'s object, and every older one of its slot, is gone.
+    /// Remembers that `node`'s object is gone.
     pub(crate) fn bury(&mut self, node: Node) {
         let (slots, (index, generation)) = match node {
-            Node::Collider(handle) => (&mut self.colliders, raw(handle)),
-            Node::Body(handle) => (&mut self.bodies, raw(handle)),
+            Node::Collider(handle) => (&mut self.colliders, handle.raw_parts()),
+            Node::Body(handle) => (&mut self.bodies, handle.raw_parts()),
         };
         let index = index as usize;
         if index >= slots.len() {
             slots.resize(index + 1, 0);
         }
-        slots[index] = slots[index].max(generation.saturating_add(1));
+        slots[index] = generation.wrapping_add(1);
     }
 
-    /// Whether `node` was forgotten as removed.
+    /// Whether `node` was the last object of its slot forgotten as removed.
     pub(crate) fn holds(&self, node: Node) -> bool {
         let (slots, (index, generation)) = match node {
-            Node::Collider(handle) => (&self.colliders, raw(handle)),
-            Node::Body(handle) => (&self.bodies, raw(handle)),
+            Node::Collider(handle) => (&self.colliders, handle.raw_parts()),
+            Node::Body(handle) => (&self.bodies, handle.raw_parts()),
         };
         slots
             .get(index as usize)
-            .is_some_and(|&dead| generation < dead)
+            .is_some_and(|&dead| dead == generation.wrapping_add(1))
     }
-}
-
-fn raw(handle: impl Handle) -> (u32, u32) {
-    handle.raw_parts()
 }
 
 #[cfg(test)]
@@ -51,17 +48,26 @@ mod tests {
     use rapier3d::prelude::{ColliderHandle, RigidBodyHandle};
 
     #[test]
-    fn a_buried_handle_and_its_elders_are_dead_a_newer_one_is_not() {
+    fn a_buried_handle_is_dead_and_no_other_generation_is() {
         let mut graves = Tombstones::default();
-        let old = Node::Body(RigidBodyHandle::from_raw_parts(3, 1));
-        graves.bury(old);
-        assert!(graves.holds(old));
-        assert!(graves.holds(Node::Body(RigidBodyHandle::from_raw_parts(3, 0))));
-        assert!(!graves.holds(Node::Body(RigidBodyHandle::from_raw_parts(3, 2))));
-        assert!(!graves.holds(Node::Body(RigidBodyHandle::from_raw_parts(2, 0))));
+        let body =
+            |index, generation| Node::Body(RigidBodyHandle::from_raw_parts(index, generation));
+        graves.bury(body(3, 1));
+        assert!(graves.holds(body(3, 1)));
+        assert!(
+            !graves.holds(body(3, 2)),
+            "a newer object of the slot lives"
+        );
+        assert!(!graves.holds(body(3, 0)));
+        assert!(!graves.holds(body(2, 1)));
         assert!(
             !graves.holds(Node::Collider(ColliderHandle::from_raw_parts(3, 1))),
             "bodies and colliders have their own slots"
+        );
+        graves.bury(body(3, 7));
+        assert!(
+            graves.holds(body(3, 7)) && !graves.holds(body(3, 1)),
+            "one per slot"
         );
     }
 }

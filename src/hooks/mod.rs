@@ -228,7 +228,10 @@ impl RuleHooks {
     }
 
     /// The rules, to edit. Under [`RecalculationPolicy::OnChange`] the live
-    /// pairs an edit can affect are recalculated before the next step.
+    /// pairs an edit can affect are recalculated before the next step. A
+    /// rule set loaded with `serde` may be put in place of the whole set
+    /// (`*hooks.rules_mut() = loaded`): it comes marked as entirely changed,
+    /// so every live pair and the plan follow it at the next step.
     pub fn rules_mut(&mut self) -> &mut CollisionRuleSet {
         &mut self.rules
     }

@@ -97,9 +97,11 @@ impl Roster {
         if self.colliders.get(collider).is_some() {
             return false;
         }
-        if self.colliders.is_superseded(collider) {
-            // A dead handle (its slot holds a newer collider): listed alone,
-            // so that the next look reports it removed.
+        if self.colliders.is_superseded(collider) || !colliders.contains(collider) {
+            // A handle of no collider in the world (its slot holds a newer
+            // one, or one Rapier has yet to hand out, which a corrupt save
+            // can name): listed alone, so that the next look reports it
+            // removed, without taking the slot from a live collider.
             self.collider_list.push(collider);
             return false;
         }
@@ -124,7 +126,7 @@ impl Roster {
         if self.bodies.get(body).is_some() {
             return false;
         }
-        if self.bodies.is_superseded(body) {
+        if self.bodies.is_superseded(body) || !bodies.contains(body) {
             self.body_list.push(body);
             return false;
         }

@@ -8,7 +8,8 @@ use rapier_collision_rules::CollisionRule;
 
 use crate::world::{Edit, GROUPS, KINDS, LAYERS, Run, TYPES};
 
-/// Runs the world and edits that `data` decodes to.
+/// Runs the world and edits that `data` decodes to. With `DRIVER_LOG` set,
+/// each edit is printed before it is applied (to read a failing input).
 pub fn drive(data: &[u8]) {
     run_of(data, false);
 }
@@ -65,7 +66,7 @@ pub fn run_of(data: &[u8], locked: bool) -> Run {
                 byte(next()) % LAYERS.len(),
             ),
             14 => Edit::ProjectTypes(byte(next()), byte(next()) % TYPES.len()),
-            15 => match byte(next()) % 4 {
+            15 => match byte(next()) % 7 {
                 0 => Edit::RemoveSpecific(byte(next()), byte(next())),
                 1 => Edit::Recursive(byte(next())),
                 2 => Edit::InSet(
@@ -74,10 +75,16 @@ pub fn run_of(data: &[u8], locked: bool) -> Run {
                     rule(next()),
                     byte(next()) % 3 == 0,
                 ),
-                _ => Edit::AddBody(byte(next())),
+                3 => Edit::AddBody(byte(next())),
+                4 => Edit::Bracket(1 + byte(next()) % 3),
+                5 => Edit::Reload,
+                _ => Edit::Corrupt(byte(next()), byte(next()) as u32 * 4),
             },
             _ => Edit::Step(1 + byte(next()) % 3),
         };
+        if std::env::var("DRIVER_LOG").is_ok() {
+            eprintln!("{edit:?}");
+        }
         run.apply(&edit);
     }
     run.apply(&Edit::Step(1));

@@ -85,14 +85,18 @@ impl Model {
         }
     }
 
-    /// A handle of a removed object: forgotten (it or a newer generation of
-    /// its slot), or its slot holds a newer generation in a side table.
+    /// A handle of a removed object: the last of its slot forgotten, or its
+    /// slot holds a newer generation in a side table.
     pub fn is_removed(&self, node: Node) -> bool {
         let (index, generation) = Self::node_raw(node);
-        self.forgotten.iter().any(|&dead| {
-            let (i, g) = Self::node_raw(dead);
-            i == index && g >= generation
-        }) || Self::superseded(&self.owner, node, Self::node_raw)
+        // Only the last handle of a slot forgotten is remembered.
+        let last = self
+            .forgotten
+            .iter()
+            .rev()
+            .find(|&&dead| Self::node_raw(dead).0 == index);
+        last.is_some_and(|&dead| Self::node_raw(dead).1 == generation)
+            || Self::superseded(&self.owner, node, Self::node_raw)
             || matches!(node, Node::Body(b) if Self::superseded(&self.parents, b, |b| b.into_raw_parts()))
     }
 

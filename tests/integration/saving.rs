@@ -2,6 +2,7 @@
 //! alone and with the Rapier world they belong to, and resolve every pair as
 //! before; the live-pair table rebuilds itself at the next step.
 
+use crate::world::numeric_leaves;
 use rapier_collision_rules::{
     CollisionGroup, CollisionRule, CollisionRuleSet, RuleError, RuleHooks,
 };
@@ -217,24 +218,6 @@ fn a_corrupt_save_loads_as_an_error_naming_the_problem() {
         }
     }
     assert!(load(saved_value()).is_ok(), "the uncorrupted save loads");
-}
-
-/// Every numeric leaf of a JSON value, as a JSON pointer.
-fn numeric_leaves(value: &serde_json::Value, at: String, out: &mut Vec<String>) {
-    match value {
-        serde_json::Value::Number(_) => out.push(at),
-        serde_json::Value::Array(items) => {
-            for (i, item) in items.iter().enumerate() {
-                numeric_leaves(item, format!("{at}/{i}"), out);
-            }
-        }
-        serde_json::Value::Object(fields) => {
-            for (key, item) in fields {
-                numeric_leaves(item, format!("{at}/{key}"), out);
-            }
-        }
-        _ => {}
-    }
 }
 
 proptest::proptest! {

@@ -45,6 +45,16 @@ pub enum Edit {
     InSet(Vec<usize>, CollisionRule, CollisionRule, bool),
     /// A body without colliders (a ragdoll's pelvis, a vehicle's frame).
     AddBody(usize),
+    /// Several Rapier steps between one `prepare` and one `after_step`
+    /// (what bevy_rapier does with substeps).
+    Bracket(usize),
+    /// The rule set saved and loaded back into the hooks (with `serde`).
+    Reload,
+    /// A save with one number changed (the leaf picked by the first value,
+    /// the number the second) loaded into the hooks if the loader takes it
+    /// (with `serde`): loads as an error or as a rule set the hooks keep
+    /// clean.
+    Corrupt(usize, u32),
 }
 
 /// Layer sets a project may use as memberships or filters.
@@ -313,6 +323,55 @@ impl Run {
                     rules.set_group_rules_in_set(&set, a, b);
                 }
             }
+            Edit::Bracket(n) => {
+                self.since_step.clear();
+                let (hooks, w) = (&mut self.hooks, &mut self.world);
+                hooks.prepare(&w.bodies, &mut w.colliders);
+                hooks.freeze_manifolds(&w.narrow_phase);
+                hooks.wake_edited(&mut w.islands, &mut w.bodies);
+                for _ in 0..n {
+                    w.step_with_events(&*hooks, &());
+                }
+                hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
+                self.check();
+            }
+            Edit::Reload => {
+                #[cfg(feature = "serde")]
+                {
+                    let saved =
+                        serde_json::to_string(self.hooks.rules()).expect("a rule set saves");
+                    *self.hooks.rules_mut() = serde_json::from_str(&saved).expect("a save loads");
+                }
+            }
+            Edit::Corrupt(_leaf, _number) => {
+                #[cfg(feature = "serde")]
+                {
+                    let mut value =
+                        serde_json::to_value(self.hooks.rules()).expect("a rule set saves");
+                    let mut leaves = Vec::new();
+                    numeric_leaves(&value, String::new(), &mut leaves);
+                    if let Some(at) = leaves.get(_leaf % leaves.len().max(1)) {
+                        if let Some(leaf) = value.pointer_mut(at) {
+                            *leaf = serde_json::json!(_number);
+                        }
+                    }
+                    if std::env::var("DRIVER_LOG").is_ok() {
+                        eprintln!(
+                            "corrupt {:?} -> {_number}: {value}",
+                            leaves.get(_leaf % leaves.len().max(1))
+                        );
+                    }
+                    if let Ok(loaded) = serde_json::from_value(value) {
+                        let rules = self.hooks.rules_mut();
+                        *rules = loaded;
+                        // A smaller saved group count forgets groups this
+                        // run hands out: made again, with the same ids.
+                        while (rules.group_count() as usize) < GROUPS {
+                            rules.create_group();
+                        }
+                    }
+                }
+            }
             Edit::AddBody(kind) => {
                 let mut builder = RigidBodyBuilder::new(KINDS[kind % KINDS.len()]);
                 if self.locked {
@@ -527,7 +586,12 @@ impl Run {
                 "live pair ({a:?}, {b:?}) names a removed collider"
             );
             let fresh = self.reference(a, b);
-            assert_eq!(rule, fresh, "live pair ({a:?}, {b:?}) is stale");
+            assert_eq!(
+                rule,
+                fresh,
+                "live pair ({a:?}, {b:?}) is stale: {}",
+                self.describe(a, b)
+            );
             assert_ne!(rule, CollisionRule::NoPair);
         }
         let narrow_phase = &self.world.narrow_phase;
@@ -575,6 +639,25 @@ impl Run {
         for &gone in &self.removed {
             assert!(self.hooks.pairs().all(|(a, b, _)| a != gone && b != gone));
         }
+    }
+}
+
+/// The JSON pointers of every number in `value`.
+#[cfg(feature = "serde")]
+pub fn numeric_leaves(value: &serde_json::Value, at: String, leaves: &mut Vec<String>) {
+    match value {
+        serde_json::Value::Number(_) => leaves.push(at),
+        serde_json::Value::Array(items) => {
+            for (i, item) in items.iter().enumerate() {
+                numeric_leaves(item, format!("{at}/{i}"), leaves);
+            }
+        }
+        serde_json::Value::Object(fields) => {
+            for (key, item) in fields {
+                numeric_leaves(item, format!("{at}/{key}"), leaves);
+            }
+        }
+        _ => {}
     }
 }
 

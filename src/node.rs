@@ -25,6 +25,24 @@ pub enum Node {
     Body(RigidBodyHandle),
 }
 
+impl Node {
+    /// The node's kind and Rapier slot index: two nodes of one slot are
+    /// generations of it.
+    pub(crate) fn slot(self) -> (bool, u32) {
+        match self {
+            Node::Collider(handle) => (false, handle.raw_parts().0),
+            Node::Body(handle) => (true, handle.raw_parts().0),
+        }
+    }
+
+    pub(crate) fn generation(self) -> u32 {
+        match self {
+            Node::Collider(handle) => handle.raw_parts().1,
+            Node::Body(handle) => handle.raw_parts().1,
+        }
+    }
+}
+
 impl From<ColliderHandle> for Node {
     fn from(handle: ColliderHandle) -> Self {
         Node::Collider(handle)

@@ -634,9 +634,20 @@ impl CollisionRuleSet {
         let (node, other) = (node.into(), other.into());
         if rule == CollisionRule::Defer {
             self.remove_specific(node, other);
-        } else if self.is_removed(node) || self.is_removed(other) {
-            // An entry of or about a removed object would name nothing.
-        } else if let Some(record) = self.record_mut(node) {
+        } else if !self.is_removed(other) {
+            // An entry about a removed object would name nothing.
+            self.put_specific(node, other, rule);
+        }
+    }
+
+    /// Stores an entry of `node` (not a removed object) about `other`. The
+    /// loader stores a save's entries this way, whatever `other` is, so
+    /// that a loaded rule set is the one saved.
+    pub(crate) fn put_specific(&mut self, node: Node, other: Node, rule: CollisionRule) {
+        if self.is_removed(node) {
+            return;
+        }
+        if let Some(record) = self.record_mut(node) {
             if record.specific.insert(other, rule).is_none() {
                 *self.named.entry(other).or_default() += 1;
             }
@@ -684,7 +695,10 @@ impl CollisionRuleSet {
     /// ```
     pub fn share_rules(&mut self, from: impl Into<Node>, to: impl Into<Node>) {
         let (from, to) = (from.into(), to.into());
-        if from == to || self.is_removed(to) || self.record_mut(from).is_none() {
+        // `from` newer than `to` in one slot: storing `from` makes `to` a
+        // removed object's handle.
+        let older_in_slot = from.slot() == to.slot() && to.generation() < from.generation();
+        if from == to || older_in_slot || self.is_removed(to) || self.record_mut(from).is_none() {
             return;
         }
         let id = self.record_id(from).expect("record_mut made one");
@@ -907,6 +921,12 @@ impl CollisionRuleSet {
     /// ```
     pub fn remove_node(&mut self, node: impl Into<Node>) {
         let node = node.into();
+        // Only a node the rules held is remembered as removed: whether an
+        // edit through a handle is refused must not depend on which
+        // objects the hooks happened to watch.
+        let held = self.record(node).is_some_and(|r| !r.is_empty())
+            || self.named.contains_key(&node)
+            || matches!(node, Node::Body(body) if self.in_hierarchy(body));
         self.detach(node);
         if self.named.remove(&node).is_some() {
             // The nodes holding an entry about it change their pairs: logged,
@@ -933,7 +953,9 @@ impl CollisionRuleSet {
             }
             self.hierarchy.forget(body);
         }
-        self.removed.bury(node);
+        if held {
+            self.removed.bury(node);
+        }
     }
 
     /// Forgets every node the rule set knows that is missing from the Rapier

@@ -134,8 +134,8 @@ impl TryFrom<Snapshot> for CollisionRuleSet {
             };
             rules.set_personal(first, record.personal);
             rules.set_group(first, record.group);
-            for (other, rule) in record.specific {
-                rules.set_specific(first, other, rule);
+            for (other, rule) in record.specific.into_iter().filter(|(_, r)| r.is_decided()) {
+                rules.put_specific(first, other, rule);
             }
             for &user in &record.users[1..] {
                 rules.share_rules(first, user);

@@ -121,7 +121,9 @@ impl Model {
     }
 
     pub fn share(&mut self, from: Node, to: Node) {
-        if from == to || self.is_removed(to) || self.record_mut(from).is_none() {
+        let (f, t) = (Self::node_raw(from), Self::node_raw(to));
+        let older_in_slot = f.0 == t.0 && t.1 < f.1;
+        if from == to || older_in_slot || self.is_removed(to) || self.record_mut(from).is_none() {
             return;
         }
         let index = self.owner[&from];
@@ -188,7 +190,16 @@ impl Model {
     }
 
     pub fn forget(&mut self, node: Node) {
-        self.forgotten.push(node);
+        let held = self.record(node).is_some_and(|r| {
+            r.personal != CollisionRule::Defer || r.group.is_some() || !r.specific.is_empty()
+        }) || self
+            .owner
+            .values()
+            .any(|&i| self.records[i].specific.contains_key(&node))
+            || matches!(node, Node::Body(b) if self.parents.contains_key(&b) || self.parents.values().any(|&p| p == b));
+        if held {
+            self.forgotten.push(node);
+        }
         self.owner.remove(&node);
         for record in &mut self.records {
             record.specific.remove(&node);

@@ -389,10 +389,14 @@ impl Run {
     }
 }
 
+/// `cases` on a fixed seed; `PROPS_CASES` and `PROPS_SEED` (hex) try
+/// others.
 fn config(cases: u32) -> Config {
     Config {
-        cases,
-        rng_seed: RngSeed::Fixed(0x5eed_c011_1de5),
+        cases: crate::world::env_or("PROPS_CASES", cases, |v| v.parse().ok()),
+        rng_seed: RngSeed::Fixed(crate::world::env_or("PROPS_SEED", 0x5eed_c011_1de5, |v| {
+            u64::from_str_radix(v, 16).ok()
+        })),
         failure_persistence: None,
         ..Config::default()
     }

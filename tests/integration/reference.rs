@@ -173,9 +173,10 @@ impl Model {
         };
         let mut result = Vec::new();
         for (handle, body) in bodies.iter() {
+            // A chain ends below a body missing from the world.
             let mut below = handle == root;
             let mut up = self.parents.get(&handle).copied();
-            while let Some(p) = up {
+            while let Some(p) = up.filter(|&p| bodies.contains(p)) {
                 below |= p == root;
                 up = self.parents.get(&p).copied();
             }

@@ -14,6 +14,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError};
 use rapier_collision_rules::CollisionRule;
+use rapier3d::prelude::ColliderHandle;
 
 use crate::world::{Edit, GROUPS, KINDS, LAYERS, Raw, Run, TYPES, env_or};
 
@@ -98,17 +99,22 @@ proptest! {
         let mut oracle = Run::new(&cubes, true, false);
         oracle.hooks.set_exhaustive(true);
         in_lockstep(&mut upkeep, &mut oracle, &edits, |upkeep, oracle| {
-            prop_assert_eq!(upkeep.live(), oracle.live(), "live pairs differ");
+            // The oracle plans, and so marks modified, every collider every
+            // step: Rapier's broad phase refits other AABBs when, so a pair
+            // without contacts may be in one graph only (see
+            // `live_in_both`); the touching pairs are compared whole.
+            let (upkeep_both, oracle_both) = live_in_both(upkeep, oracle);
+            prop_assert_eq!(upkeep_both, oracle_both, "live pairs differ");
             prop_assert_eq!(upkeep.touching(), oracle.touching(), "touching pairs differ");
             // Which colliders carry the hook flag may follow the order of
             // edits (a partial plan keeps a flag a full plan would drop), so
             // each run knows its own hooked pairs: each of them must be a
             // live pair of the other with the same rule.
             let (upkeep_live, oracle_live) = (upkeep.live(), oracle.live());
-            for known in upkeep.known() {
+            for known in upkeep.known().into_iter().filter(|k| holds(oracle, k)) {
                 prop_assert!(oracle_live.contains(&known), "the upkeep knows {:?}, not live so in the oracle", known);
             }
-            for known in oracle.known() {
+            for known in oracle.known().into_iter().filter(|k| holds(upkeep, k)) {
                 prop_assert!(upkeep_live.contains(&known), "the oracle knows {:?}, not live so in the upkeep", known);
             }
             prop_assert_eq!(upkeep.poses(), oracle.poses(), "the worlds moved apart");
@@ -139,6 +145,16 @@ fn live_in_both(a: &Run, b: &Run) -> (Vec<Live>, Vec<Live>) {
         .filter(|&(x, y, _)| a_keys.contains(&(x, y)))
         .collect();
     (a_live, b_live)
+}
+
+/// Whether `run`'s Rapier graph holds the pair of `live`.
+fn holds(run: &Run, live: &Live) -> bool {
+    let (a, b) = (
+        ColliderHandle::from_raw_parts(live.0.0, live.0.1),
+        ColliderHandle::from_raw_parts(live.1.0, live.1.1),
+    );
+    let narrow_phase = &run.world.narrow_phase;
+    narrow_phase.contact_pair(a, b).is_some() || narrow_phase.intersection_pair(a, b).is_some()
 }
 
 /// Applies `edits` (and two last steps) to both runs, and `compare`s them

@@ -990,6 +990,7 @@ impl CollisionRuleSet {
 
     /// Logs "everything changed": hooks that receive this rule set whole
     /// (a loaded one put in place of another) recalculate and plan all.
+    #[cfg(feature = "serde")]
     pub(crate) fn mark_all_changed(&mut self) {
         self.changes.everything();
     }

@@ -190,6 +190,7 @@ impl Run {
                 if let Some(record) = stores.then(|| self.model.record_mut(node)).flatten() {
                     record.group = group;
                 }
+                self.model.tidy(node);
             }
             Op::Personal(x, r) => {
                 let node = self.node(*x);
@@ -198,6 +199,7 @@ impl Run {
                 if let Some(record) = stores.then(|| self.model.record_mut(node)).flatten() {
                     record.personal = *r;
                 }
+                self.model.tidy(node);
             }
             Op::Specific(x, y, r) => {
                 let (node, other) = (self.node(*x), self.node(*y));
@@ -206,6 +208,7 @@ impl Run {
                     if let Some(record) = self.model.owner.get(&node) {
                         self.model.records[*record].specific.remove(&other);
                     }
+                    self.model.tidy(node);
                 } else if self.model.is_removed(other) {
                     // An entry about a removed object names nothing.
                 } else if let Some(record) = self.model.record_mut(node) {
@@ -218,6 +221,7 @@ impl Run {
                 if let Some(&record) = self.model.owner.get(&node) {
                     self.model.records[record].specific.remove(&other);
                 }
+                self.model.tidy(node);
             }
             Op::Share(x, y) => {
                 let (from, to) = (self.node(*x), self.node(*y));

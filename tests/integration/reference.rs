@@ -120,6 +120,22 @@ impl Model {
         self.owner.insert(node, record);
     }
 
+    /// Drops `node`'s record if it is empty and `node` its only user, as
+    /// the crate frees it (which makes the slot free for another
+    /// generation again).
+    pub fn tidy(&mut self, node: Node) {
+        let Some(&index) = self.owner.get(&node) else {
+            return;
+        };
+        let r = &self.records[index];
+        let empty =
+            r.personal == CollisionRule::Defer && r.group.is_none() && r.specific.is_empty();
+        let alone = self.owner.values().filter(|&&i| i == index).count() == 1;
+        if empty && alone {
+            self.owner.remove(&node);
+        }
+    }
+
     pub fn share(&mut self, from: Node, to: Node) {
         let (f, t) = (Self::node_raw(from), Self::node_raw(to));
         let older_in_slot = f.0 == t.0 && t.1 < f.1;

@@ -742,21 +742,8 @@ fn a_bare_pipeline_with_prepare_and_after_step_matches_step() {
         let w = &mut bare.world;
         hooks2.prepare(&w.bodies, &mut w.colliders);
         hooks2.wake_edited(&mut w.islands, &mut w.bodies);
-        w.physics_pipeline.step(
-            w.gravity,
-            &w.integration_parameters,
-            &mut w.islands,
-            &mut w.broad_phase,
-            &mut w.narrow_phase,
-            &mut w.bodies,
-            &mut w.colliders,
-            &mut w.impulse_joints,
-            &mut w.multibody_joints,
-            &mut w.soft_bodies,
-            &mut w.ccd_solver,
-            &hooks2,
-            &(),
-        );
+        // Rapier's own step (`PhysicsPipeline::step` on the world's parts).
+        w.step_with_events(&hooks2, &());
         hooks2.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
     }
     for body in [a, b] {

@@ -233,7 +233,7 @@ fn ragdolls(method: Method, dt: f32) -> Built {
     let mut rules = CollisionRuleSet::default();
     let mut tracked = Vec::new();
     for k in 0..4 {
-        let origin = Vector::new(0.3 * k as f32, 1.2 + 1.3 * k as f32, 0.15 * k as f32);
+        let origin = Vector::new(2.0 * k as f32, 1.2 + 0.2 * k as f32, 0.0);
         let bit = Group::from_bits_truncate(1 << k);
         let groups = InteractionGroups::new(bit, Group::ALL - bit, InteractionTestMode::And);
         let collider = |half: Vector| {

@@ -13,7 +13,7 @@ use rapier3d::prelude::{
 
 use crate::CollisionRule;
 
-/// How a live pair's contacts are updated (seed's `ManifoldUpdateSetting`).
+/// How a live pair's contacts are updated (the BEPU design's `ManifoldUpdateSetting`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ManifoldUpdate {
     /// Contacts are computed when the rule allows them (`Normal`,

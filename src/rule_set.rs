@@ -717,8 +717,8 @@ impl CollisionRuleSet {
         a == b || matches!((self.record_id(a), self.record_id(b)), (Some(x), Some(y)) if x == y)
     }
 
-    /// Makes every descendant of `node` share `node`'s rule record (seed
-    /// 3.C.a): the colliders of a body, and every body below it in the
+    /// Makes every descendant of `node` share `node`'s rule record (the
+    /// BEPU design's recursive rule setting): the colliders of a body, and every body below it in the
     /// parent map with their colliders. Later edits through any of them
     /// reach all of them. Bodies or colliders added later are not included.
     ///

@@ -347,7 +347,7 @@ impl RuleHooks {
         self.replan = true;
     }
 
-    /// Registers the pair-created callback (seed's immediate events): it
+    /// Registers the pair-created callback (the BEPU design's immediate pair events): it
     /// runs when a pair is created, before its first contact computation,
     /// and again whenever the pair's rule is recalculated, and may replace
     /// the pair's rule by returning `Some`. Rapier may call it from several

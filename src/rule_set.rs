@@ -718,9 +718,10 @@ impl CollisionRuleSet {
     }
 
     /// Makes every descendant of `node` share `node`'s rule record (the
-    /// BEPU design's recursive rule setting): the colliders of a body, and every body below it in the
-    /// parent map with their colliders. Later edits through any of them
-    /// reach all of them. Bodies or colliders added later are not included.
+    /// BEPU design's recursive rule setting): the colliders of a body, and
+    /// every body below it in the parent map with their colliders. Later
+    /// edits through any of them reach all of them. Bodies or colliders
+    /// added later are not included.
     ///
     /// ```
     /// use rapier3d::prelude::*;

@@ -347,11 +347,11 @@ impl RuleHooks {
         self.replan = true;
     }
 
-    /// Registers the pair-created callback (the BEPU design's immediate pair events): it
-    /// runs when a pair is created, before its first contact computation,
-    /// and again whenever the pair's rule is recalculated, and may replace
-    /// the pair's rule by returning `Some`. Rapier may call it from several
-    /// threads at once.
+    /// Registers the pair-created callback (the BEPU design's immediate
+    /// pair events): it runs when a pair is created, before its first
+    /// contact computation, and again whenever the pair's rule is
+    /// recalculated, and may replace the pair's rule by returning `Some`.
+    /// Rapier may call it from several threads at once.
     ///
     /// ```
     /// use rapier_collision_rules::{CollisionRule, RuleHooks};

@@ -29,12 +29,12 @@
 //! [`FullPass`]).
 
 use hashbrown::{HashMap, HashSet};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
 
-use crate::node::HandleMap;
-use crate::pairs::PairKey;
-use crate::project::{Room, Settings};
-use crate::{CollisionGroup, CollisionRule, CollisionRuleSet, FullPass, Node};
+use super::node::HandleMap;
+use super::pairs::PairKey;
+use super::project::{Room, Settings};
+use super::{CollisionGroup, CollisionRule, CollisionRuleSet, FullPass, Node};
 
 /// The facts that decide a native collider's pairs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

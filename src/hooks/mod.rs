@@ -13,13 +13,13 @@ use std::sync::Mutex;
 use std::sync::atomic::AtomicBool;
 
 use hashbrown::{HashMap, HashSet};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
 
-use crate::native::Plan;
-use crate::node::HandleMap;
-use crate::pairs::{PairKey, PairState, PairTable};
-use crate::project::{Settings, Written};
-use crate::{CollisionRule, CollisionRuleSet, Node, StepStats};
+use super::native::Plan;
+use super::node::HandleMap;
+use super::pairs::{PairKey, PairState, PairTable};
+use super::project::{Settings, Written};
+use super::{CollisionRule, CollisionRuleSet, Node, StepStats};
 
 pub use live::WorldRef;
 use roster::Roster;

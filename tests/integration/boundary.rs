@@ -5,7 +5,7 @@
 use rapier_collision_rules::{CollisionRule, ManifoldUpdate, RuleHooks};
 use rapier3d::prelude::*;
 
-use crate::scenes::Events;
+use crate::dim3::scenes::Events;
 
 /// A fast CCD ball crossing a thick slab, then stopped by a thin wall just
 /// past it: the wall's impact makes the CCD split the step into substeps

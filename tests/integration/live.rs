@@ -11,12 +11,12 @@
 //! `LIVE_SEED` (hex) and `LIVE_CASES` try others, for example
 //! `LIVE_SEED=5eed0003 LIVE_CASES=1024 cargo test --release --test integration live::`.
 
+use super::rapier::prelude::ColliderHandle;
+use super::rules::CollisionRule;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError};
-use rapier_collision_rules::CollisionRule;
-use rapier3d::prelude::ColliderHandle;
 
-use crate::world::{Edit, GROUPS, KINDS, LAYERS, Raw, Run, TYPES, env_or};
+use super::world::{Edit, GROUPS, KINDS, LAYERS, Raw, Run, TYPES, env_or};
 
 fn rule() -> impl Strategy<Value = CollisionRule> {
     proptest::sample::select(CollisionRule::ALL.to_vec())

@@ -6,7 +6,7 @@
 use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
 use rapier3d::prelude::*;
 
-use crate::scenes::Scene;
+use crate::dim3::scenes::Scene;
 use CollisionRule::*;
 
 fn layer(memberships: Group, filter: Group) -> InteractionGroups {

@@ -5,7 +5,7 @@
 use rapier_collision_rules::{CollisionGroup, CollisionRule, FullPass, RuleHooks};
 use rapier3d::prelude::*;
 
-use crate::scenes::Scene;
+use crate::dim3::scenes::Scene;
 use CollisionRule::*;
 
 fn hooked(scene: &Scene, collider: ColliderHandle) -> bool {

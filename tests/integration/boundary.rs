@@ -2,10 +2,11 @@
 //! `prepare` and `after_step` (what bevy_rapier does with substeps), the
 //! one-call bare pipeline, and the calls a bare-pipeline user can forget.
 
-use rapier_collision_rules::{CollisionRule, ManifoldUpdate, RuleHooks};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionRule, ManifoldUpdate, RuleHooks};
+use super::{at, cuboid};
 
-use crate::dim3::scenes::Events;
+use super::scenes::Events;
 
 /// A fast CCD ball crossing a thick slab, then stopped by a thin wall just
 /// past it: the wall's impact makes the CCD split the step into substeps
@@ -26,8 +27,8 @@ impl Crossing {
         world.integration_parameters.max_ccd_substeps = substeps;
         let fixed = world.insert_body(RigidBodyBuilder::fixed());
         let events = ActiveEvents::COLLISION_EVENTS;
-        let slab = ColliderBuilder::cuboid(1.5, 2.0, 2.0)
-            .translation(Vector::new(4.0, 0.0, 0.0))
+        let slab = cuboid(1.5, 2.0, 2.0)
+            .translation(at(4.0, 0.0))
             .active_events(events);
         let slab = if hooked {
             slab
@@ -36,12 +37,12 @@ impl Crossing {
         };
         let slab = world.insert_collider(slab, Some(fixed));
         world.insert_collider(
-            ColliderBuilder::cuboid(0.05, 2.0, 2.0).translation(Vector::new(6.0, 0.0, 0.0)),
+            cuboid(0.05, 2.0, 2.0).translation(at(6.0, 0.0)),
             Some(fixed),
         );
         let ball = world.insert_body(
             RigidBodyBuilder::dynamic()
-                .linvel(Vector::new(70.0, 0.0, 0.0))
+                .linvel(at(70.0, 0.0))
                 .ccd_enabled(true),
         );
         let shot = world.insert_collider(

@@ -5,12 +5,24 @@ pub use rapier::prelude::*;
 pub use rapier_collision_rules::dim2 as rules;
 pub use rapier2d as rapier;
 
+#[path = "boundary.rs"]
+mod boundary;
 #[path = "driver.rs"]
 pub mod driver;
+#[path = "errors.rs"]
+mod errors;
+#[path = "joints.rs"]
+mod joints;
 #[path = "live.rs"]
 mod live;
+#[path = "project.rs"]
+mod project;
 #[path = "properties.rs"]
 mod properties;
+#[path = "query.rs"]
+mod query;
+#[path = "reach.rs"]
+mod reach;
 #[path = "reference.rs"]
 mod reference;
 // Some helpers of the scenes serve only the 3D build's other tests.
@@ -46,4 +58,9 @@ pub fn pose_bits(pose: &Pose) -> Vec<u32> {
 /// A box of half-extents `hx`, `hy` (`_hz` is the 3D scenes' depth).
 pub fn cuboid(hx: f32, hy: f32, _hz: f32) -> ColliderBuilder {
     ColliderBuilder::cuboid(hx, hy)
+}
+
+/// A joint that leaves the rotation free, its second anchor at `anchor2`.
+pub fn ball_joint(anchor2: Vector) -> GenericJoint {
+    RevoluteJointBuilder::new().local_anchor2(anchor2).into()
 }

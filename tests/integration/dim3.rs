@@ -6,12 +6,24 @@ pub use rapier::prelude::*;
 pub use rapier_collision_rules::dim3 as rules;
 pub use rapier3d as rapier;
 
+#[path = "boundary.rs"]
+mod boundary;
 #[path = "driver.rs"]
 pub mod driver;
+#[path = "errors.rs"]
+mod errors;
+#[path = "joints.rs"]
+mod joints;
 #[path = "live.rs"]
 mod live;
+#[path = "project.rs"]
+mod project;
 #[path = "properties.rs"]
 mod properties;
+#[path = "query.rs"]
+mod query;
+#[path = "reach.rs"]
+mod reach;
 #[path = "reference.rs"]
 mod reference;
 #[path = "scenes.rs"]
@@ -49,4 +61,9 @@ pub fn pose_bits(pose: &Pose) -> Vec<u32> {
 /// A box of half-extents `hx`, `hy`, `hz`.
 pub fn cuboid(hx: f32, hy: f32, hz: f32) -> ColliderBuilder {
     ColliderBuilder::cuboid(hx, hy, hz)
+}
+
+/// A joint that leaves the rotations free, its second anchor at `anchor2`.
+pub fn ball_joint(anchor2: Vector) -> GenericJoint {
+    SphericalJointBuilder::new().local_anchor2(anchor2).into()
 }

@@ -15,21 +15,9 @@ mod dim3;
 #[cfg(feature = "dim3")]
 mod alloc;
 #[cfg(feature = "dim3")]
-mod boundary;
-#[cfg(feature = "dim3")]
 mod determinism;
 #[cfg(feature = "dim3")]
 mod edges;
-#[cfg(feature = "dim3")]
-mod errors;
-#[cfg(feature = "dim3")]
-mod joints;
-#[cfg(feature = "dim3")]
-mod project;
-#[cfg(feature = "dim3")]
-mod query;
-#[cfg(feature = "dim3")]
-mod reach;
 #[cfg(all(feature = "dim3", feature = "serde"))]
 mod saving;
 #[cfg(feature = "dim3")]

@@ -2,10 +2,10 @@
 //! specific rule hooks its cheaper side, a world without rules is left as
 //! Rapier has it, and the full passes say why they run.
 
-use rapier_collision_rules::{CollisionGroup, CollisionRule, FullPass, RuleHooks};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionGroup, CollisionRule, FullPass, RuleHooks};
 
-use crate::dim3::scenes::Scene;
+use super::scenes::Scene;
 use CollisionRule::*;
 
 fn hooked(scene: &Scene, collider: ColliderHandle) -> bool {

@@ -25,7 +25,12 @@
 //! `cargo bench --bench worlds` (criterion, then the paired ratios);
 //! `WORLDS_PAIRED_ONLY=1` skips criterion.
 
+use rapier_collision_rules::dim3 as rules;
+use rapier3d as rapier;
+
 mod common;
+#[path = "common/space3.rs"]
+mod space;
 
 use std::fmt::Write as _;
 use std::time::Duration;

@@ -3,30 +3,29 @@
 
 use std::time::{Duration, Instant};
 
-use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
-use rapier3d::prelude::*;
+use crate::rapier::prelude::*;
+use crate::rules::{CollisionRule, CollisionRuleSet, RuleHooks};
+use crate::space::{at, column, cuboid};
 
 /// A pile of `n` unit boxes standing in columns of ten, the columns side by
-/// side, on a ground slab, settled for 60 steps; each box's body and column.
+/// side (a square of columns in 3D, a row in 2D: `space::column`), on a ground slab, settled for 60 steps; each box's body and column.
 /// With `can_sleep` the boxes may fall asleep.
 pub fn pile(n: usize, can_sleep: bool) -> (PhysicsWorld, Vec<(RigidBodyHandle, usize)>) {
     let mut world = PhysicsWorld::new();
-    let ground =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-    world.insert_collider(ColliderBuilder::cuboid(500.0, 0.5, 500.0), Some(ground));
-    let side = ((n / 10) as f32).sqrt().ceil() as usize;
+    let ground = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5, 0.0)));
+    world.insert_collider(cuboid(500.0, 0.5, 500.0), Some(ground));
     let mut boxes = Vec::with_capacity(n);
     for i in 0..n {
-        let column = i / 10;
-        let (x, z) = ((column % side) as f32 * 1.01, (column / side) as f32 * 1.01);
+        let column_index = i / 10;
+        let (x, z) = column(column_index, n / 10);
         let y = 0.5 + (i % 10) as f32 * 1.001;
         let body = world.insert_body(
             RigidBodyBuilder::dynamic()
-                .translation(Vector::new(x, y, z))
+                .translation(at(x, y, z))
                 .can_sleep(can_sleep),
         );
-        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
-        boxes.push((body, column));
+        world.insert_collider(cuboid(0.5, 0.5, 0.5), Some(body));
+        boxes.push((body, column_index));
     }
     for _ in 0..60 {
         world.step();

@@ -37,7 +37,8 @@ pub enum FullPass {
 /// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.0, 0.0)));
 /// world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
 /// let mut hooks = RuleHooks::default();
-/// hooks.rules_mut().set_specific(ghost, floor, CollisionRule::NoResponse);
+/// // NoResponse would be Rapier's solver groups; NoContacts needs the hook.
+/// hooks.rules_mut().set_specific(ghost, floor, CollisionRule::NoContacts);
 /// hooks.step(&mut world);
 ///
 /// let stats = hooks.stats();

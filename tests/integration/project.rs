@@ -494,7 +494,7 @@ fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
     let mut paired = false;
     for _ in 0..120 {
         hooks.step(&mut world);
-        paired |= hooks.pair_rule(g, deck) == Some(NoResponse);
+        paired |= hooks.pair_rule_in(&world, g, deck) == Some(NoResponse);
     }
     let (yb, yg) = (
         world.bodies[ball].translation().y,

@@ -62,6 +62,58 @@ pub struct Twins {
 }
 
 impl Twins {
+    /// Plans the rules world before its first step and gives each collider
+    /// whose Rapier settings the plan changed the same change in the plain
+    /// twin (its groups set away and back, its types likewise): Rapier
+    /// recomputes a modified collider's contacts, which alone would set the
+    /// two worlds apart, and then each would be timed on a different
+    /// evolution.
+    pub fn plan_alike(&mut self) {
+        if self.control {
+            return;
+        }
+        let settings = |c: &Collider| {
+            (
+                c.collision_groups(),
+                c.solver_groups(),
+                c.active_collision_types(),
+            )
+        };
+        let before: Vec<_> = self
+            .world
+            .colliders
+            .iter()
+            .map(|(h, c)| (h, settings(c)))
+            .collect();
+        self.hooks
+            .prepare(&self.world.bodies, &mut self.world.colliders);
+        for (handle, was) in before {
+            let now = settings(&self.world.colliders[handle]);
+            let Some(twin) = self.plain.colliders.get_mut(handle) else {
+                continue;
+            };
+            if (now.0, now.1) != (was.0, was.1) {
+                let groups = twin.collision_groups();
+                twin.set_collision_groups(InteractionGroups::none());
+                twin.set_collision_groups(groups);
+            }
+            if now.2 != was.2 {
+                let types = twin.active_collision_types();
+                twin.set_active_collision_types(ActiveCollisionTypes::empty());
+                twin.set_active_collision_types(types);
+            }
+        }
+    }
+
+    /// Whether the two worlds' bodies stand exactly alike.
+    pub fn identical(&self) -> bool {
+        self.plain
+            .bodies
+            .iter()
+            .zip(self.world.bodies.iter())
+            .all(|((_, a), (_, b))| a.position() == b.position())
+    }
+
     /// Times `iters` steps of one world (`rules`: the one with the rules),
     /// stepping the other untimed.
     pub fn time(&mut self, iters: u64, rules: bool) -> Duration {

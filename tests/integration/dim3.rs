@@ -6,32 +6,7 @@ pub use rapier::prelude::*;
 pub use rapier_collision_rules::dim3 as rules;
 pub use rapier3d as rapier;
 
-#[path = "boundary.rs"]
-mod boundary;
-#[path = "driver.rs"]
-pub mod driver;
-#[path = "errors.rs"]
-mod errors;
-#[path = "joints.rs"]
-mod joints;
-#[path = "live.rs"]
-mod live;
-#[path = "project.rs"]
-mod project;
-#[path = "properties.rs"]
-mod properties;
-#[path = "query.rs"]
-mod query;
-#[path = "reach.rs"]
-mod reach;
-#[path = "reference.rs"]
-mod reference;
-#[path = "scenes.rs"]
-pub mod scenes;
-#[path = "vectors.rs"]
-mod vectors;
-#[path = "world.rs"]
-pub mod world;
+dimension_free_tests!();
 
 /// A point of the plane the scenes are laid out in.
 pub fn at(x: f32, y: f32) -> Vector {

@@ -4,6 +4,42 @@
 //! is on (`dim3.rs`, `dim2.rs`); the scenes of `scenes2d.rs` are the 2D
 //! build's own.
 
+/// The test files that do not depend on the dimension, mounted by `dim3.rs`
+/// and `dim2.rs` over their Rapier (each file names Rapier, the crate and
+/// the shape helpers through `super::`).
+macro_rules! dimension_free_tests {
+    () => {
+        #[path = "boundary.rs"]
+        mod boundary;
+        #[path = "driver.rs"]
+        pub mod driver;
+        #[path = "errors.rs"]
+        mod errors;
+        #[path = "joints.rs"]
+        mod joints;
+        #[path = "live.rs"]
+        mod live;
+        #[path = "project.rs"]
+        mod project;
+        #[path = "properties.rs"]
+        mod properties;
+        #[path = "query.rs"]
+        mod query;
+        #[path = "reach.rs"]
+        mod reach;
+        #[path = "reference.rs"]
+        mod reference;
+        // Some helpers of the scenes serve only the 3D build's other tests.
+        #[allow(dead_code)]
+        #[path = "scenes.rs"]
+        pub mod scenes;
+        #[path = "vectors.rs"]
+        mod vectors;
+        #[path = "world.rs"]
+        pub mod world;
+    };
+}
+
 // Both dimensions mount the same test files on purpose.
 #[cfg(feature = "dim2")]
 #[allow(clippy::duplicate_mod)]

@@ -1,8 +1,9 @@
 //! The integration tests, in one binary: table-driven resolution cases,
 //! property tests against a naive reference resolver, and error values.
-//! What does not depend on the dimension runs against each dimension that
-//! is on (`dim3.rs`, `dim2.rs`); the scenes of `scenes2d.rs` are the 2D
-//! build's own.
+//! What does not depend on the dimension (the scenes included, through a
+//! few shape helpers) runs against each dimension that is on (`dim3.rs`,
+//! `dim2.rs`); the rest (allocation counts, the soak, serde round trips,
+//! the stability sweeps, meshes and voxels) is the 3D build's.
 
 /// The test files that do not depend on the dimension, mounted by `dim3.rs`
 /// and `dim2.rs` over their Rapier (each file names Rapier, the crate and

@@ -25,7 +25,12 @@
 //! `cargo bench --bench worlds` (criterion, then the paired ratios);
 //! `WORLDS_PAIRED_ONLY=1` skips criterion.
 
+use rapier_collision_rules::dim3 as rules;
+use rapier3d as rapier;
+
 mod common;
+#[path = "common/space3.rs"]
+mod space;
 
 use std::fmt::Write as _;
 use std::time::Duration;
@@ -202,7 +207,8 @@ fn twins(make: &dyn Fn(bool) -> Scene, control: bool) -> Twins {
         hooks: RuleHooks::new(rules),
         control,
     };
-    // The first step plans; what is measured is the steady state.
+    twins.plan_alike();
+    // What is measured is the steady state.
     twins.time(2, true);
     twins.time(2, false);
     twins
@@ -321,7 +327,7 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
         let p = twins.paired();
         let stats = twins.hooks.stats();
         println!(
-            "  {name:<22} {n:>6}: {:.3} [{:.3}, {:.3}]  plain {:>9.1} us  rules {:>9.1} us  extra {:>7.2} us  (hooked {}, watched {}, planned {}, tracked pairs {})",
+            "  {name:<22} {n:>6}: {:.3} [{:.3}, {:.3}]  plain {:>9.1} us  rules {:>9.1} us  extra {:>7.2} us  (hooked {}, watched {}, planned {}, tracked pairs {}{})",
             p.ratios[2],
             p.ratios[0],
             p.ratios[4],
@@ -332,6 +338,11 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
             stats.watched_colliders,
             stats.planned_colliders,
             stats.tracked_pairs,
+            if twins.identical() {
+                ""
+            } else {
+                "; the twins differ"
+            },
         );
         writeln!(
             csv,

@@ -1,4 +1,4 @@
-//! A custom rule calculator (seed 3.D): teams read from each collider's
+//! A custom rule calculator (the BEPU design's `CollisionRuleCalculator`): teams read from each collider's
 //! `user_data`. Team mates pass through each other (`NoResponse`); everyone
 //! else gets the default calculation, which the calculator delegates to.
 //!

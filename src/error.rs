@@ -1,8 +1,8 @@
 //! Every refusal of the rule set's editing verbs.
 
-use rapier3d::prelude::RigidBodyHandle;
+use super::rapier::prelude::RigidBodyHandle;
 
-use crate::Node;
+use super::Node;
 
 /// Why an edit was refused. A refused edit changes nothing.
 ///

@@ -2,12 +2,12 @@
 
 use hashbrown::HashMap;
 
-use crate::CollisionRule;
+use super::CollisionRule;
 
 /// A collision group: a small copyable id whose relations to other groups
 /// live in the rule set's group table.
 ///
-/// Groups are made by [`CollisionRuleSet::create_group`](crate::CollisionRuleSet::create_group);
+/// Groups are made by [`CollisionRuleSet::create_group`](super::CollisionRuleSet::create_group);
 /// two are built in. A node with no explicit group (and none up its chain)
 /// is in [`DEFAULT_DYNAMIC`](Self::DEFAULT_DYNAMIC) when its rigid body is
 /// dynamic, and in [`DEFAULT_KINEMATIC`](Self::DEFAULT_KINEMATIC) otherwise.

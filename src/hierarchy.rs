@@ -1,11 +1,11 @@
 //! The parent map between rigid bodies, chains, and the cycle check.
 
-use rapier3d::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
+use super::rapier::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 
 use hashbrown::HashMap;
 
-use crate::node::HandleMap;
-use crate::{Node, RuleError};
+use super::node::HandleMap;
+use super::{Node, RuleError};
 
 /// The crate's own parent map between rigid bodies. Invariant: it has no
 /// cycle (every `set` checks), so walking up always ends.

@@ -5,9 +5,9 @@
 use std::collections::VecDeque;
 
 use hashbrown::HashSet;
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
 
-use crate::{CollisionRuleSet, RuleError};
+use super::{CollisionRuleSet, RuleError};
 
 impl CollisionRuleSet {
     /// Gives every link of the multibody that holds `body` its parent link's

@@ -2,9 +2,9 @@
 //! that move their layers into the rules (more than 32 layers, rules other
 //! than on and off; `docs/migration.md`).
 
-use rapier3d::prelude::InteractionGroups;
+use super::rapier::prelude::InteractionGroups;
 
-use crate::{CollisionGroup, CollisionRule, CollisionRuleSet};
+use super::{CollisionGroup, CollisionRule, CollisionRuleSet};
 
 impl CollisionRuleSet {
     /// One group for each distinct `(collision groups, solver groups)`

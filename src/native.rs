@@ -29,12 +29,12 @@
 //! [`FullPass`]).
 
 use hashbrown::{HashMap, HashSet};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
 
-use crate::node::HandleMap;
-use crate::pairs::PairKey;
-use crate::project::{Room, Settings};
-use crate::{CollisionGroup, CollisionRule, CollisionRuleSet, FullPass, Node};
+use super::node::HandleMap;
+use super::pairs::PairKey;
+use super::project::{Room, Settings};
+use super::{CollisionGroup, CollisionRule, CollisionRuleSet, FullPass, Node};
 
 /// The facts that decide a native collider's pairs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -330,7 +330,13 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
         })
         .map(|&(h, _, _)| h)
         .collect();
-    plan.carriers = carriers(request, &mut hooked);
+    // Specific entries Rapier's groups can decide take bits of their own;
+    // the others are carried by a hooked side.
+    let entry_bits = EntryBits::plan(request, &classes, &settings, &personal, &hooked);
+    if entry_bits.room.is_some() && plan.room.is_none() {
+        plan.room = entry_bits.room.map(|room| (room, colliders.len()));
+    }
+    plan.carriers = carriers(request, &mut hooked, &entry_bits.decided);
     // A carrier the rules did not otherwise reach (a named node's collider,
     // one side of a pinned pair) is planned too.
     let known: HashSet<ColliderHandle> = classes.iter().map(|c| c.0).collect();
@@ -360,6 +366,7 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
             },
         };
         let own = colliders.get(handle).map(|c| (request.own)(handle, c));
+        let entry = entry_bits.apply(handle, entry);
         let entry = own.map_or(entry, |own| entry.fitted(own, dynamic, rules));
         plan.colliders.insert(handle, entry);
     }
@@ -376,6 +383,7 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
 fn carriers(
     request: &Request<'_>,
     hooked: &mut HashSet<ColliderHandle>,
+    decided: &HashSet<(Node, Node)>,
 ) -> HashSet<ColliderHandle> {
     let Request {
         rules,
@@ -393,7 +401,9 @@ fn carriers(
         let mut subjects: Vec<Node> = record.specific.keys().copied().collect();
         subjects.sort_unstable_by_key(|n| node_order(*n));
         for subject in subjects {
-            sides.push((under(node), under(subject)));
+            if !decided.contains(&(node, subject)) {
+                sides.push((under(node), under(subject)));
+            }
         }
     }
     for key in request.pinned {
@@ -425,6 +435,216 @@ fn carriers(
         }
     }
     added
+}
+
+/// Specific entries that Rapier's groups decide, without the hook: a
+/// `NoPair` entry in collision groups, a `NoResponse` entry in solver
+/// groups. The colliders under one side, all on dynamic bodies, take a bit
+/// of their own as their membership; the colliders under the other side
+/// leave that bit out of their filter. Their pairs keep Rapier's contact
+/// recycling, which a hooked pair loses (`docs/architecture.md`, "The
+/// planner").
+///
+/// It is exact where the entry decides every pair between the two sides
+/// and nothing else changes: both sides' colliders are native with
+/// Rapier's default groups in their class and in the project's settings,
+/// none is in a pinned pair, no other specific entry links a node of one
+/// side's chains to a node of the other's (so the specific stage finds this
+/// entry for each of their pairs), and each collider carries at most one
+/// bit of each kind. The bit comes from the room the project's settings
+/// leave (as a group's bit does), beside the groups' own bits; a side that
+/// carries several entries uses one bit for all of them. Where any of this
+/// fails, or the bits run out, the entry is carried by a hooked side.
+#[derive(Debug, Default)]
+struct EntryBits {
+    /// The entries decided by bits, in both orders.
+    decided: HashSet<(Node, Node)>,
+    /// Each carrying collider's membership bit: collision, solver.
+    memberships: HashMap<ColliderHandle, [Option<u32>; 2]>,
+    /// The bits each collider leaves out of its filters: collision, solver.
+    excluded: HashMap<ColliderHandle, [Group; 2]>,
+    /// The room looked up for the bits, if an entry asked for one: the plan
+    /// is made again when colliders come or go, which may change it.
+    room: Option<Room>,
+}
+
+impl EntryBits {
+    fn plan(
+        request: &Request<'_>,
+        classes: &[(ColliderHandle, Option<Class>, bool)],
+        settings: &GroupSettings,
+        personal: &HashMap<ColliderHandle, CollisionRule>,
+        hooked: &HashSet<ColliderHandle>,
+    ) -> EntryBits {
+        let Request {
+            rules,
+            bodies,
+            colliders,
+            ..
+        } = *request;
+        let mut bits = EntryBits::default();
+        // Each entry once, in a fixed order; its rule is what the specific
+        // stage reads between the two nodes (both directions).
+        let ordered = |a: Node, b: Node| {
+            if node_order(a) <= node_order(b) {
+                (a, b)
+            } else {
+                (b, a)
+            }
+        };
+        let mut entries: Vec<(Node, Node)> = request
+            .ruled
+            .iter()
+            .filter_map(|&node| rules.record(node).map(|r| (node, r)))
+            .flat_map(|(node, record)| record.specific.keys().map(move |&o| ordered(node, o)))
+            .collect();
+        entries.sort_unstable_by_key(|&(a, b)| (node_order(a), node_order(b)));
+        entries.dedup();
+        let kind_of = |(x, y): (Node, Node)| match rules.specific(x, y).most_restrictive(rules.specific(y, x)) {
+            CollisionRule::NoPair => Some(0),
+            CollisionRule::NoResponse => Some(1),
+            _ => None,
+        };
+        let entries: Vec<((Node, Node), usize)> = entries
+            .into_iter()
+            .filter_map(|e| kind_of(e).map(|kind| (e, kind)))
+            .collect();
+        if entries.is_empty() {
+            return bits;
+        }
+
+        // A collider may carry a bit if it is native with Rapier's default
+        // groups, in its class's plan and in its project's settings.
+        let known: HashMap<ColliderHandle, (Option<Class>, bool)> =
+            classes.iter().map(|&(h, c, d)| (h, (c, d))).collect();
+        let pinned = request.pinned_colliders();
+        let all = InteractionGroups::all();
+        let eligible = |c: ColliderHandle| -> Option<bool> {
+            let &(class, dynamic) = known.get(&c)?;
+            if hooked.contains(&c) || personal.contains_key(&c) || pinned.contains(&c) {
+                return None;
+            }
+            let planned = settings.entry(class?)?;
+            let own = (request.own)(c, colliders.get(c)?);
+            let defaults = [planned.collision, planned.solver, own.collision, own.solver];
+            defaults.iter().all(|&g| g == all).then_some(dynamic)
+        };
+        let chains = |side: &[ColliderHandle]| -> HashSet<Node> {
+            let mut nodes = HashSet::new();
+            for &c in side {
+                let mut node = Some(Node::Collider(c));
+                while let Some(current) = node {
+                    nodes.insert(current);
+                    node = rules.hierarchy.next(bodies, colliders, current);
+                }
+            }
+            nodes
+        };
+        // Another entry from a node of `from` to a node of `to` than `entry`.
+        let other_entry = |from: &HashSet<Node>, to: &HashSet<Node>, entry: (Node, Node)| {
+            from.iter().any(|&a| {
+                rules.record(a).is_some_and(|r| {
+                    r.specific
+                        .keys()
+                        .any(|&b| to.contains(&b) && ordered(a, b) != entry)
+                })
+            })
+        };
+
+        let taken = settings
+            .bits
+            .values()
+            .fold(Group::empty(), |g, &bit| g | Group::from_bits_retain(1 << bit));
+        let mut free: Option<Group> = None;
+        let mut node_bits: HashMap<(Node, usize), u32> = HashMap::new();
+        for ((x, y), kind) in entries {
+            let under = |node: Node| rules.colliders_under(node, bodies, colliders);
+            let (cx, cy) = (under(x), under(y));
+            if cx.is_empty() || cy.is_empty() {
+                continue;
+            }
+            let side = |cs: &[ColliderHandle]| -> Option<bool> {
+                cs.iter()
+                    .map(|&c| eligible(c))
+                    .try_fold(true, |all_dynamic, d| d.map(|d| all_dynamic && d))
+            };
+            let (Some(x_dynamic), Some(y_dynamic)) = (side(&cx), side(&cy)) else {
+                continue;
+            };
+            // The carrying side: all dynamic, the smaller, the first node on a tie.
+            let (owner, carrying, other) = match (x_dynamic, y_dynamic) {
+                (true, true) if cy.len() < cx.len() => (y, cy, cx),
+                (true, _) => (x, cx, cy),
+                (false, true) => (y, cy, cx),
+                (false, false) => continue,
+            };
+            if carrying.iter().any(|c| other.contains(c)) {
+                continue;
+            }
+            let (s_nodes, t_nodes) = (chains(&carrying), chains(&other));
+            if other_entry(&s_nodes, &t_nodes, (x, y)) || other_entry(&t_nodes, &s_nodes, (x, y)) {
+                continue;
+            }
+            let bit = match node_bits.get(&(owner, kind)) {
+                Some(&bit) => bit,
+                None => {
+                    let room = *bits.room.get_or_insert_with(|| {
+                        Room::of_world(colliders, request.own)
+                    });
+                    let free = free.get_or_insert(room.bits() - taken);
+                    let Some(bit) = (0..32u32).find(|&b| free.contains(Group::from_bits_retain(1 << b)))
+                    else {
+                        continue;
+                    };
+                    bit
+                }
+            };
+            let carries_other = carrying.iter().any(|c| {
+                bits.memberships
+                    .get(c)
+                    .and_then(|m| m[kind])
+                    .is_some_and(|b| b != bit)
+            });
+            if carries_other {
+                continue;
+            }
+            if node_bits.insert((owner, kind), bit).is_none() {
+                if let Some(free) = free.as_mut() {
+                    free.remove(Group::from_bits_retain(1 << bit));
+                }
+            }
+            for c in carrying {
+                bits.memberships.entry(c).or_default()[kind] = Some(bit);
+            }
+            for c in other {
+                bits.excluded.entry(c).or_insert([Group::empty(); 2])[kind] |=
+                    Group::from_bits_retain(1 << bit);
+            }
+            bits.decided.insert((x, y));
+            bits.decided.insert((y, x));
+        }
+        bits
+    }
+
+    /// `entry` with the bits of `collider`, if it carries or leaves out any.
+    fn apply(&self, collider: ColliderHandle, mut entry: ColliderPlan) -> ColliderPlan {
+        let membership = self.memberships.get(&collider).copied().unwrap_or_default();
+        let excluded = self
+            .excluded
+            .get(&collider)
+            .copied()
+            .unwrap_or([Group::empty(); 2]);
+        let narrow = |groups: InteractionGroups, bit: Option<u32>, excluded: Group| {
+            if bit.is_none() && excluded.is_empty() {
+                return groups;
+            }
+            let memberships = bit.map_or(groups.memberships, |b| Group::from_bits_retain(1 << b));
+            InteractionGroups::new(memberships, groups.filter - excluded, InteractionTestMode::And)
+        };
+        entry.collision = narrow(entry.collision, membership[0], excluded[0]);
+        entry.solver = narrow(entry.solver, membership[1], excluded[1]);
+        entry
+    }
 }
 
 /// Whether the default rule refuses a pair or keeps its contacts out: what

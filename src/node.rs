@@ -1,7 +1,7 @@
 //! Nodes (the colliders and rigid bodies that carry rules) and the
 //! handle-indexed side tables that hold what the crate knows of them.
 
-use rapier3d::prelude::{ColliderHandle, RigidBodyHandle};
+use super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
 
 /// A collider or a rigid body: anything a rule can be attached to.
 ///

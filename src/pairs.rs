@@ -6,14 +6,14 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use hashbrown::HashMap;
-use rapier3d::prelude::{
+use super::rapier::prelude::{
     ColliderHandle, ColliderSet, Pose, RigidBodyHandle, RigidBodySet, ShapeType, SolverContact,
     Vector,
 };
 
-use crate::CollisionRule;
+use super::CollisionRule;
 
-/// How a live pair's contacts are updated (seed's `ManifoldUpdateSetting`).
+/// How a live pair's contacts are updated (the BEPU design's `ManifoldUpdateSetting`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ManifoldUpdate {
     /// Contacts are computed when the rule allows them (`Normal`,
@@ -254,26 +254,27 @@ pub(crate) fn freeze(
 
 /// Replays a frozen manifold at the bodies' current poses: the anchors move
 /// with their bodies, and the distance follows them along the frozen normal.
-pub(crate) fn thaw(
+/// Sets `normal`, and gives the contacts to put in place of the solver's
+/// (a `Vec` in 3D, a two-contact array in 2D).
+pub(crate) fn thaw<'a>(
     bodies: &RigidBodySet,
     body1: Option<RigidBodyHandle>,
     body2: Option<RigidBodyHandle>,
-    frozen: &FrozenManifold,
+    frozen: &'a FrozenManifold,
     normal: &mut Vector,
-    contacts: &mut Vec<SolverContact>,
-) {
+) -> impl Iterator<Item = SolverContact> + 'a {
     let (pose1, pose2) = (body_pose(bodies, body1), body_pose(bodies, body2));
     *normal = pose1.transform_vector(frozen.normal);
-    contacts.clear();
-    contacts.extend(frozen.contacts.iter().map(|f| {
+    let normal = *normal;
+    frozen.contacts.iter().map(move |f| {
         let anchor1 = pose1.transform_point(f.anchor1);
         let anchor2 = pose2.transform_point(f.anchor2);
         let mut contact = f.contact;
         contact.anchor1 = anchor1;
         contact.anchor2 = anchor2;
-        contact.dist = f.dist + (anchor2 - anchor1).dot(*normal);
+        contact.dist = f.dist + (anchor2 - anchor1).dot(normal);
         contact
-    }));
+    })
 }
 
 impl FrozenManifold {

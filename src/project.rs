@@ -4,7 +4,7 @@
 //! (`docs/semantics.md`, section 6): a pair interacts only as far as both the
 //! project's settings and the rules allow.
 
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
 
 /// The four per-collider settings Rapier reads before the hook.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

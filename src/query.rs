@@ -1,9 +1,9 @@
 //! Scene queries that follow the rules: a predicate for Rapier's
 //! `QueryFilter` (`docs/semantics.md`, section 6).
 
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
 
-use crate::{CollisionRule, CollisionRuleSet};
+use super::{CollisionRule, CollisionRuleSet};
 
 impl CollisionRuleSet {
     /// A predicate for [`QueryFilter::predicate`]: keeps a collider when the

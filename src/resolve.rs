@@ -1,11 +1,11 @@
 //! The default calculation and its special case, stage by stage in the
 //! order of `docs/semantics.md`, section 2.
 
-use rapier3d::prelude::{ColliderHandle, ColliderSet, RigidBodySet};
+use super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodySet};
 use smallvec::SmallVec;
 
-use crate::rule_set::Record;
-use crate::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
+use super::rule_set::Record;
+use super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
 
 /// The stage of the default calculation that decided a pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -1,7 +1,7 @@
 //! The five rules, their severity order, and what each means to Rapier's
 //! narrow phase: the one place that names `SolverFlags`.
 
-use rapier3d::prelude::SolverFlags;
+use super::rapier::prelude::SolverFlags;
 
 /// What a pair of colliders is allowed to do, from least to most restrictive.
 ///

@@ -2,13 +2,13 @@
 //! them, each keeping the set's invariants.
 
 use hashbrown::HashMap;
-use rapier3d::prelude::{ColliderHandle, ColliderSet, RigidBodyHandle, RigidBodySet};
+use super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodyHandle, RigidBodySet};
 
-use crate::group::GroupTable;
-use crate::hierarchy::Hierarchy;
-use crate::node::HandleMap;
-use crate::tombstones::Tombstones;
-use crate::{CollisionGroup, CollisionRule, Node, RuleError};
+use super::group::GroupTable;
+use super::hierarchy::Hierarchy;
+use super::node::HandleMap;
+use super::tombstones::Tombstones;
+use super::{CollisionGroup, CollisionRule, Node, RuleError};
 
 /// The rules one node carries. Several nodes may share one record.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -181,8 +181,8 @@ impl Changes {
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
     serde(
-        into = "crate::snapshot::Snapshot",
-        try_from = "crate::snapshot::Snapshot"
+        into = "super::snapshot::Snapshot",
+        try_from = "super::snapshot::Snapshot"
     )
 )]
 pub struct CollisionRuleSet {
@@ -717,10 +717,11 @@ impl CollisionRuleSet {
         a == b || matches!((self.record_id(a), self.record_id(b)), (Some(x), Some(y)) if x == y)
     }
 
-    /// Makes every descendant of `node` share `node`'s rule record (seed
-    /// 3.C.a): the colliders of a body, and every body below it in the
-    /// parent map with their colliders. Later edits through any of them
-    /// reach all of them. Bodies or colliders added later are not included.
+    /// Makes every descendant of `node` share `node`'s rule record (the
+    /// BEPU design's recursive rule setting): the colliders of a body, and
+    /// every body below it in the parent map with their colliders. Later
+    /// edits through any of them reach all of them. Bodies or colliders
+    /// added later are not included.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -1031,7 +1032,7 @@ impl CollisionRuleSet {
         for (child, parent) in self.hierarchy.links() {
             nodes.extend([Node::Body(child), Node::Body(parent)]);
         }
-        nodes.sort_unstable_by_key(|&n| crate::native::node_order(n));
+        nodes.sort_unstable_by_key(|&n| super::native::node_order(n));
         nodes.dedup();
         nodes
     }

@@ -1,4 +1,4 @@
-//! What the last step did and cost: [`RuleHooks::stats`](crate::RuleHooks::stats).
+//! What the last step did and cost: [`RuleHooks::stats`](super::RuleHooks::stats).
 
 /// Why the hooks look at every collider of the world before each step,
 /// instead of only at those the rules reach (`docs/performance.md`).
@@ -24,7 +24,7 @@ pub enum FullPass {
     DefaultGroups,
 }
 
-/// What the last step of a [`RuleHooks`](crate::RuleHooks) did and cost:
+/// What the last step of a [`RuleHooks`](super::RuleHooks) did and cost:
 /// where to start when a world steps slower with the rules than without.
 ///
 /// ```
@@ -37,7 +37,8 @@ pub enum FullPass {
 /// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.0, 0.0)));
 /// world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
 /// let mut hooks = RuleHooks::default();
-/// hooks.rules_mut().set_specific(ghost, floor, CollisionRule::NoResponse);
+/// // NoResponse would be Rapier's solver groups; NoContacts needs the hook.
+/// hooks.rules_mut().set_specific(ghost, floor, CollisionRule::NoContacts);
 /// hooks.step(&mut world);
 ///
 /// let stats = hooks.stats();
@@ -76,7 +77,7 @@ pub struct StepStats {
     /// collision types with the project's settings of every collider, so
     /// that those were read over the whole world when it was made (again
     /// whenever colliders come or go; see
-    /// [`RuleHooks::project_settings_changed`](crate::RuleHooks::project_settings_changed)).
+    /// [`RuleHooks::project_settings_changed`](super::RuleHooks::project_settings_changed)).
     pub shares_project_bits: bool,
     /// Whether the hooks looked up hooked pairs in Rapier's graph after the
     /// step. They skip it when no body was awake before or after the step

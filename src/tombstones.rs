@@ -2,8 +2,7 @@
 //! every editing verb refuses them alike (`docs/semantics.md`, "Handles of
 //! removed objects").
 
-use crate::Node;
-use crate::node::Handle;
+use super::Node;
 
 /// Per Rapier slot, the generation last forgotten as removed, plus one (0:
 /// none). Only that exact handle is dead here: a handle of another
@@ -19,9 +18,11 @@ pub(crate) struct Tombstones {
 impl Tombstones {
     /// Remembers that `node`'s object is gone.
     pub(crate) fn bury(&mut self, node: Node) {
-        let (slots, (index, generation)) = match node {
-            Node::Collider(handle) => (&mut self.colliders, handle.raw_parts()),
-            Node::Body(handle) => (&mut self.bodies, handle.raw_parts()),
+        let ((body, index), generation) = (node.slot(), node.generation());
+        let slots = if body {
+            &mut self.bodies
+        } else {
+            &mut self.colliders
         };
         let index = index as usize;
         if index >= slots.len() {
@@ -32,10 +33,8 @@ impl Tombstones {
 
     /// Whether `node` was the last object of its slot forgotten as removed.
     pub(crate) fn holds(&self, node: Node) -> bool {
-        let (slots, (index, generation)) = match node {
-            Node::Collider(handle) => (&self.colliders, handle.raw_parts()),
-            Node::Body(handle) => (&self.bodies, handle.raw_parts()),
-        };
+        let ((body, index), generation) = (node.slot(), node.generation());
+        let slots = if body { &self.bodies } else { &self.colliders };
         slots
             .get(index as usize)
             .is_some_and(|&dead| dead == generation.wrapping_add(1))
@@ -45,7 +44,7 @@ impl Tombstones {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rapier3d::prelude::{ColliderHandle, RigidBodyHandle};
+    use super::super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
 
     #[test]
     fn a_buried_handle_is_dead_and_no_other_generation_is() {

@@ -3,30 +3,29 @@
 
 use std::time::{Duration, Instant};
 
-use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
-use rapier3d::prelude::*;
+use crate::rapier::prelude::*;
+use crate::rules::{CollisionRule, CollisionRuleSet, RuleHooks};
+use crate::space::{at, column, cuboid};
 
 /// A pile of `n` unit boxes standing in columns of ten, the columns side by
-/// side, on a ground slab, settled for 60 steps; each box's body and column.
+/// side (a square of columns in 3D, a row in 2D: `space::column`), on a ground slab, settled for 60 steps; each box's body and column.
 /// With `can_sleep` the boxes may fall asleep.
 pub fn pile(n: usize, can_sleep: bool) -> (PhysicsWorld, Vec<(RigidBodyHandle, usize)>) {
     let mut world = PhysicsWorld::new();
-    let ground =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-    world.insert_collider(ColliderBuilder::cuboid(500.0, 0.5, 500.0), Some(ground));
-    let side = ((n / 10) as f32).sqrt().ceil() as usize;
+    let ground = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5, 0.0)));
+    world.insert_collider(cuboid(500.0, 0.5, 500.0), Some(ground));
     let mut boxes = Vec::with_capacity(n);
     for i in 0..n {
-        let column = i / 10;
-        let (x, z) = ((column % side) as f32 * 1.01, (column / side) as f32 * 1.01);
+        let column_index = i / 10;
+        let (x, z) = column(column_index, n / 10);
         let y = 0.5 + (i % 10) as f32 * 1.001;
         let body = world.insert_body(
             RigidBodyBuilder::dynamic()
-                .translation(Vector::new(x, y, z))
+                .translation(at(x, y, z))
                 .can_sleep(can_sleep),
         );
-        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
-        boxes.push((body, column));
+        world.insert_collider(cuboid(0.5, 0.5, 0.5), Some(body));
+        boxes.push((body, column_index));
     }
     for _ in 0..60 {
         world.step();
@@ -63,6 +62,58 @@ pub struct Twins {
 }
 
 impl Twins {
+    /// Plans the rules world before its first step and gives each collider
+    /// whose Rapier settings the plan changed the same change in the plain
+    /// twin (its groups set away and back, its types likewise): Rapier
+    /// recomputes a modified collider's contacts, which alone would set the
+    /// two worlds apart, and then each would be timed on a different
+    /// evolution.
+    pub fn plan_alike(&mut self) {
+        if self.control {
+            return;
+        }
+        let settings = |c: &Collider| {
+            (
+                c.collision_groups(),
+                c.solver_groups(),
+                c.active_collision_types(),
+            )
+        };
+        let before: Vec<_> = self
+            .world
+            .colliders
+            .iter()
+            .map(|(h, c)| (h, settings(c)))
+            .collect();
+        self.hooks
+            .prepare(&self.world.bodies, &mut self.world.colliders);
+        for (handle, was) in before {
+            let now = settings(&self.world.colliders[handle]);
+            let Some(twin) = self.plain.colliders.get_mut(handle) else {
+                continue;
+            };
+            if (now.0, now.1) != (was.0, was.1) {
+                let groups = twin.collision_groups();
+                twin.set_collision_groups(InteractionGroups::none());
+                twin.set_collision_groups(groups);
+            }
+            if now.2 != was.2 {
+                let types = twin.active_collision_types();
+                twin.set_active_collision_types(ActiveCollisionTypes::empty());
+                twin.set_active_collision_types(types);
+            }
+        }
+    }
+
+    /// Whether the two worlds' bodies stand exactly alike.
+    pub fn identical(&self) -> bool {
+        self.plain
+            .bodies
+            .iter()
+            .zip(self.world.bodies.iter())
+            .all(|((_, a), (_, b))| a.position() == b.position())
+    }
+
     /// Times `iters` steps of one world (`rules`: the one with the rules),
     /// stepping the other untimed.
     pub fn time(&mut self, iters: u64, rules: bool) -> Duration {

@@ -7,14 +7,14 @@ use std::sync::atomic::Ordering;
 use std::sync::{MutexGuard, PoisonError};
 
 use hashbrown::HashMap;
-use rapier3d::prelude::*;
+use super::super::rapier::prelude::*;
 
 use super::{CalculatorContext, PairCreated, RecalculationPolicy, RuleHooks};
-use crate::CollisionRule;
-use crate::pairs::{self, ManifoldUpdate, PairKey, PairState};
-use crate::project::body_types;
-use crate::resolve::special_case;
-use crate::rule::contact_answer;
+use super::super::CollisionRule;
+use super::super::pairs::{self, ManifoldUpdate, PairKey, PairState};
+use super::super::project::body_types;
+use super::super::resolve::special_case;
+use super::super::rule::contact_answer;
 
 impl RuleHooks {
     /// A pair's rule: the calculator or the default calculation, then the
@@ -280,8 +280,9 @@ fn poses(context: &PairFilterContext<'_>) -> u64 {
         };
         let pose = body.position();
         let (t, r) = (pose.translation, pose.rotation);
-        [t.x, t.y, t.z, r.x, r.y, r.z, r.w]
+        t.to_array()
             .into_iter()
+            .chain(super::super::rotation_words(r))
             .fold(0xcbf2_9ce4_8422_2325_u64, |hash, value| {
                 (hash ^ u64::from(value.to_bits())).wrapping_mul(0x0100_0000_01b3)
             })
@@ -360,14 +361,11 @@ impl RuleHooks {
         let mut frozen = state.frozen.lock().unwrap_or_else(PoisonError::into_inner);
         let (step, manifolds) = frozen.get_or_insert_with(|| (self.step, Vec::new()));
         match manifolds.iter().find(|m| m.subshapes() == subshapes) {
-            Some(manifold) => pairs::thaw(
-                bodies,
-                body1,
-                body2,
-                manifold,
-                rigid.normal,
-                rigid.solver_contacts,
-            ),
+            Some(manifold) => {
+                let thawed = pairs::thaw(bodies, body1, body2, manifold, rigid.normal);
+                rigid.solver_contacts.clear();
+                rigid.solver_contacts.extend(thawed);
+            }
             // Manifolds are frozen in the step the setting took effect; one
             // that appears later had no contacts then.
             None if *step == self.step => {

@@ -11,7 +11,7 @@
 
 use std::sync::PoisonError;
 
-use rapier3d::prelude::*;
+use super::super::rapier::prelude::*;
 
 use super::RuleHooks;
 use super::upkeep::{Joints, filters_pass, kinds_of, pair_exists};
@@ -20,8 +20,8 @@ use super::upkeep::{Joints, filters_pass, kinds_of, pair_exists};
 /// body is dynamic and whether a collider is made of parts; `None` when
 /// Rapier holds no such pair.
 type Native = Option<(CollisionRule, (bool, bool), bool)>;
-use crate::pairs::{ManifoldUpdate, PairKey, PairState, made_of_parts};
-use crate::{CollisionRule, Node};
+use super::super::pairs::{ManifoldUpdate, PairKey, PairState, made_of_parts};
+use super::super::{CollisionRule, Node};
 
 /// What Rapier holds of a world, for the live-pair queries that answer on
 /// demand: its narrow phase and its sets. Made from a `&PhysicsWorld`, or

@@ -13,13 +13,13 @@ use std::sync::Mutex;
 use std::sync::atomic::AtomicBool;
 
 use hashbrown::{HashMap, HashSet};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
 
-use crate::native::Plan;
-use crate::node::HandleMap;
-use crate::pairs::{PairKey, PairState, PairTable};
-use crate::project::{Settings, Written};
-use crate::{CollisionRule, CollisionRuleSet, Node, StepStats};
+use super::native::Plan;
+use super::node::HandleMap;
+use super::pairs::{PairKey, PairState, PairTable};
+use super::project::{Settings, Written};
+use super::{CollisionRule, CollisionRuleSet, Node, StepStats};
 
 pub use live::WorldRef;
 use roster::Roster;
@@ -347,11 +347,11 @@ impl RuleHooks {
         self.replan = true;
     }
 
-    /// Registers the pair-created callback (seed's immediate events): it
-    /// runs when a pair is created, before its first contact computation,
-    /// and again whenever the pair's rule is recalculated, and may replace
-    /// the pair's rule by returning `Some`. Rapier may call it from several
-    /// threads at once.
+    /// Registers the pair-created callback (the BEPU design's immediate
+    /// pair events): it runs when a pair is created, before its first
+    /// contact computation, and again whenever the pair's rule is
+    /// recalculated, and may replace the pair's rule by returning `Some`.
+    /// Rapier may call it from several threads at once.
     ///
     /// ```
     /// use rapier_collision_rules::{CollisionRule, RuleHooks};

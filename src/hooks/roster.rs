@@ -6,11 +6,11 @@
 //! step's look is proportional to what is watched, not to the world
 //! (`docs/architecture.md`, "Cost per step").
 
-use rapier3d::prelude::*;
+use super::super::rapier::prelude::*;
 
-use crate::Node;
-use crate::node::HandleMap;
-use crate::project::Settings;
+use super::super::Node;
+use super::super::node::HandleMap;
+use super::super::project::Settings;
 
 /// What the hooks remember of a watched collider.
 #[derive(Clone, Copy, Debug)]

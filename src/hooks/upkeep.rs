@@ -9,13 +9,13 @@
 use std::sync::PoisonError;
 
 use hashbrown::HashSet;
-use rapier3d::prelude::*;
+use super::super::rapier::prelude::*;
 
 use super::{RecalculationPolicy, RuleHooks};
-use crate::native::{self, ColliderPlan, Request};
-use crate::pairs::{ManifoldUpdate, PairKey, PairState, made_of_parts};
-use crate::project::{Settings, Written, body_types};
-use crate::{FullPass, Node, StepStats};
+use super::super::native::{self, ColliderPlan, Request};
+use super::super::pairs::{ManifoldUpdate, PairKey, PairState, made_of_parts};
+use super::super::project::{Settings, Written, body_types};
+use super::super::{FullPass, Node, StepStats};
 
 /// Whether Rapier holds a pair of `a` and `b` (a contact or a sensor pair).
 pub(super) fn pair_exists(
@@ -1021,7 +1021,7 @@ impl RuleHooks {
 /// the parent map, lies under such a node, or has settings of its own in
 /// the plan. The hooks watch exactly these.
 fn reached(
-    rules: &crate::CollisionRuleSet,
+    rules: &super::super::CollisionRuleSet,
     plan: &native::Plan,
     bodies: &RigidBodySet,
     colliders: &ColliderSet,

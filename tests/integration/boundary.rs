@@ -2,10 +2,11 @@
 //! `prepare` and `after_step` (what bevy_rapier does with substeps), the
 //! one-call bare pipeline, and the calls a bare-pipeline user can forget.
 
-use rapier_collision_rules::{CollisionRule, ManifoldUpdate, RuleHooks};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionRule, ManifoldUpdate, RuleHooks};
+use super::{at, cuboid};
 
-use crate::scenes::Events;
+use super::scenes::Events;
 
 /// A fast CCD ball crossing a thick slab, then stopped by a thin wall just
 /// past it: the wall's impact makes the CCD split the step into substeps
@@ -17,17 +18,29 @@ struct Crossing {
     slab: ColliderHandle,
 }
 
+/// How the slab lets the ball through.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Pass {
+    /// Rapier's own solver groups, without the rules.
+    Rapier,
+    /// A specific `NoResponse` rule, which the planner gives to Rapier's
+    /// solver groups (a bit of the ball's own).
+    Bits,
+    /// The same rule, with the slab hooked by a personal `Normal`, so that
+    /// the hook decides the pair at each of the CCD's questions.
+    Hook,
+}
+
 impl Crossing {
-    /// `hooked`: the slab passes the ball by a specific `NoResponse` rule;
-    /// otherwise by Rapier's own solver groups.
-    fn new(substeps: usize, hooked: bool) -> (Crossing, Option<RuleHooks>) {
+    fn new(substeps: usize, pass: Pass) -> (Crossing, Option<RuleHooks>) {
+        let hooked = pass != Pass::Rapier;
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::ZERO;
         world.integration_parameters.max_ccd_substeps = substeps;
         let fixed = world.insert_body(RigidBodyBuilder::fixed());
         let events = ActiveEvents::COLLISION_EVENTS;
-        let slab = ColliderBuilder::cuboid(1.5, 2.0, 2.0)
-            .translation(Vector::new(4.0, 0.0, 0.0))
+        let slab = cuboid(1.5, 2.0, 2.0)
+            .translation(at(4.0, 0.0))
             .active_events(events);
         let slab = if hooked {
             slab
@@ -36,12 +49,12 @@ impl Crossing {
         };
         let slab = world.insert_collider(slab, Some(fixed));
         world.insert_collider(
-            ColliderBuilder::cuboid(0.05, 2.0, 2.0).translation(Vector::new(6.0, 0.0, 0.0)),
+            cuboid(0.05, 2.0, 2.0).translation(at(6.0, 0.0)),
             Some(fixed),
         );
         let ball = world.insert_body(
             RigidBodyBuilder::dynamic()
-                .linvel(Vector::new(70.0, 0.0, 0.0))
+                .linvel(at(70.0, 0.0))
                 .ccd_enabled(true),
         );
         let shot = world.insert_collider(
@@ -53,6 +66,9 @@ impl Crossing {
             hooks
                 .rules_mut()
                 .set_specific(slab, shot, CollisionRule::NoResponse);
+            if pass == Pass::Hook {
+                hooks.rules_mut().set_personal(slab, CollisionRule::Normal);
+            }
             hooks
         });
         let crossing = Crossing {
@@ -75,8 +91,8 @@ impl Crossing {
 
     /// What one run saw, step by step: the ball's position (bits), whether
     /// the ball and the slab touched, and the events.
-    fn run(substeps: usize, per_bracket: usize, hooked: bool) -> Vec<String> {
-        let (mut scene, mut hooks) = Crossing::new(substeps, hooked);
+    fn run(substeps: usize, per_bracket: usize, pass: Pass) -> Vec<String> {
+        let (mut scene, mut hooks) = Crossing::new(substeps, pass);
         let mut events = Events::new();
         let mut seen = Vec::new();
         for _ in 0..6 {
@@ -103,32 +119,40 @@ impl Crossing {
             if let Some(hooks) = &mut hooks {
                 let w = &scene.world;
                 hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
-                assert!(hooks.hooked_count() > 0, "the NoResponse pair is hooked");
+                assert_eq!(
+                    hooks.hooked_count() > 0,
+                    pass == Pass::Hook,
+                    "{pass:?}: hooked colliders {}",
+                    hooks.hooked_count()
+                );
             }
         }
         seen
     }
 }
 
-/// A hooked `NoResponse` pair's contacts and events equal those of the
-/// same pair excluded by Rapier's solver groups, step by step, with 1 to 4
-/// CCD substeps and 1 or 3 Rapier steps between `prepare` and `after_step`.
+/// A `NoResponse` pair's contacts and events, hooked or given to Rapier's
+/// solver groups by the planner, equal those of the same pair excluded by
+/// hand-written solver groups, step by step, with 1 to 4 CCD substeps and 1
+/// or 3 Rapier steps between `prepare` and `after_step`.
 #[test]
 fn no_response_holds_across_ccd_substeps_and_pipeline_steps() {
     for substeps in 1..=4 {
         for per_bracket in [1, 3] {
-            let plain = Crossing::run(substeps, per_bracket, false);
+            let plain = Crossing::run(substeps, per_bracket, Pass::Rapier);
             assert!(
                 plain.iter().any(|s| s.contains("touching true")),
                 "the ball passes through the slab: {plain:#?}"
             );
-            let hooked = Crossing::run(substeps, per_bracket, true);
-            for (step, (plain, hooked)) in plain.iter().zip(&hooked).enumerate() {
-                assert_eq!(
-                    hooked, plain,
-                    "{substeps} CCD substeps, {per_bracket} steps per bracket, step {step}: \
-                     hooked against solver groups"
-                );
+            for pass in [Pass::Bits, Pass::Hook] {
+                let ruled = Crossing::run(substeps, per_bracket, pass);
+                for (step, (plain, ruled)) in plain.iter().zip(&ruled).enumerate() {
+                    assert_eq!(
+                        ruled, plain,
+                        "{substeps} CCD substeps, {per_bracket} steps per bracket, step {step}: \
+                         {pass:?} against solver groups"
+                    );
+                }
             }
         }
     }
@@ -137,8 +161,8 @@ fn no_response_holds_across_ccd_substeps_and_pipeline_steps() {
 /// `step_pipeline` on bare sets steps exactly as `step` on a `PhysicsWorld`.
 #[test]
 fn step_pipeline_is_step_on_bare_sets() {
-    let (mut stepped, hooks1) = Crossing::new(2, true);
-    let (mut bare, hooks2) = Crossing::new(2, true);
+    let (mut stepped, hooks1) = Crossing::new(2, Pass::Hook);
+    let (mut bare, hooks2) = Crossing::new(2, Pass::Hook);
     let (mut hooks1, mut hooks2) = (hooks1.expect("hooks"), hooks2.expect("hooks"));
     for step in 0..8 {
         hooks1.step(&mut stepped.world);
@@ -222,7 +246,7 @@ fn a_forgotten_call_fails_loudly_and_names_it() {
         ),
     ];
     for (misuse, act, names) in table {
-        let (mut scene, hooks) = Crossing::new(1, true);
+        let (mut scene, hooks) = Crossing::new(1, Pass::Hook);
         let mut hooks = hooks.expect("hooks");
         // Three good steps: the ball is inside the slab, the pair live.
         for _ in 0..3 {

@@ -11,8 +11,8 @@
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::process::Command;
 
-use crate::driver::run_of;
-use crate::world::Run;
+use crate::dim3::driver::run_of;
+use crate::dim3::world::Run;
 
 /// The environment variable that makes `child_digest` print its digest.
 const CHILD: &str = "RULES_DETERMINISM_CHILD";

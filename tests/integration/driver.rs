@@ -4,9 +4,9 @@
 //! checks after every step that nothing panicked, the rule set is clean,
 //! and every live pair is exact (see `world.rs`).
 
-use rapier_collision_rules::CollisionRule;
+use super::rules::CollisionRule;
 
-use crate::world::{Edit, GROUPS, KINDS, LAYERS, Run, TYPES};
+use super::world::{Edit, GROUPS, KINDS, LAYERS, Run, TYPES};
 
 /// Runs the world and edits that `data` decodes to. With `DRIVER_LOG` set,
 /// each edit is printed before it is applied (to read a failing input).
@@ -98,8 +98,8 @@ mod bounded {
 
     proptest! {
         #![proptest_config(Config {
-            cases: crate::world::env_or("DRIVER_CASES", 300, |v| v.parse().ok()),
-            rng_seed: RngSeed::Fixed(crate::world::env_or("DRIVER_SEED", 0xf022_ed17, |v| u64::from_str_radix(v, 16).ok())),
+            cases: super::super::world::env_or("DRIVER_CASES", 300, |v| v.parse().ok()),
+            rng_seed: RngSeed::Fixed(super::super::world::env_or("DRIVER_SEED", 0xf022_ed17, |v| u64::from_str_radix(v, 16).ok())),
             failure_persistence: None,
             ..Config::default()
         })]

@@ -4,7 +4,7 @@
 use rapier_collision_rules::{CollisionRule, ManifoldUpdate, RuleHooks};
 use rapier3d::prelude::*;
 
-use crate::scenes::Scene;
+use crate::dim3::scenes::Scene;
 use CollisionRule::*;
 
 /// A kinematic platform resting on the floor, whose collision types let
@@ -442,7 +442,7 @@ fn sharing_survives_later_children_and_reparenting() {
 /// cannot say alone) it gets the intersection events plain Rapier gives.
 #[test]
 fn a_bullet_crossing_a_hooked_sensor_gets_plain_rapiers_events() {
-    use crate::scenes::Events;
+    use crate::dim3::scenes::Events;
     let run = |rule: Option<CollisionRule>| {
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::ZERO;

@@ -1,7 +1,7 @@
 //! Refused edits: the error values, and that a refusal changes nothing.
 
-use rapier_collision_rules::{CollisionRuleSet, RuleError};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionRuleSet, RuleError};
 
 fn bodies(n: usize) -> (RigidBodySet, Vec<RigidBodyHandle>) {
     let mut set = RigidBodySet::new();
@@ -88,11 +88,7 @@ fn a_refused_group_edit_changes_nothing() {
     let mut rules = CollisionRuleSet::default();
     let before = format!("{rules:?}");
     let refused = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        rules.set_group_rule(
-            foreign,
-            foreign,
-            rapier_collision_rules::CollisionRule::NoPair,
-        );
+        rules.set_group_rule(foreign, foreign, super::rules::CollisionRule::NoPair);
     }));
     assert!(refused.is_err(), "a foreign group was accepted");
     assert_eq!(

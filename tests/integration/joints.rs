@@ -1,15 +1,15 @@
 //! Parent maps filled from Rapier's joints equal the same maps written by
 //! hand, and a refused one changes nothing.
 
-use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleError};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleError};
+use super::{at, ball_joint};
 
 /// A ragdoll: pelvis, torso, head, two arms of two links, two legs of two
 /// links; `(child, parent)` in the order they are jointed.
 fn ragdoll(world: &mut PhysicsWorld) -> (RigidBodyHandle, Vec<(RigidBodyHandle, RigidBodyHandle)>) {
     let mut body = |y: f32| {
-        let body =
-            world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, y, 0.0)));
+        let body = world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, y)));
         world.insert_collider(ColliderBuilder::capsule_y(0.2, 0.1), Some(body));
         body
     };
@@ -28,8 +28,8 @@ fn ragdoll(world: &mut PhysicsWorld) -> (RigidBodyHandle, Vec<(RigidBodyHandle, 
     (pelvis, links)
 }
 
-fn joint() -> SphericalJointBuilder {
-    SphericalJointBuilder::new().local_anchor2(Vector::new(0.0, 0.3, 0.0))
+fn joint() -> GenericJoint {
+    ball_joint(at(0.0, 0.3))
 }
 
 fn sorted(rules: &CollisionRuleSet) -> Vec<((u32, u32), (u32, u32))> {

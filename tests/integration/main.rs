@@ -1,26 +1,67 @@
 //! The integration tests, in one binary: table-driven resolution cases,
 //! property tests against a naive reference resolver, and error values.
+//! What does not depend on the dimension (the scenes included, through a
+//! few shape helpers) runs against each dimension that is on (`dim3.rs`,
+//! `dim2.rs`); the rest (allocation counts, the soak, serde round trips,
+//! the stability sweeps, meshes and voxels) is the 3D build's.
 
+/// The test files that do not depend on the dimension, mounted by `dim3.rs`
+/// and `dim2.rs` over their Rapier (each file names Rapier, the crate and
+/// the shape helpers through `super::`).
+macro_rules! dimension_free_tests {
+    () => {
+        #[path = "boundary.rs"]
+        mod boundary;
+        #[path = "driver.rs"]
+        pub mod driver;
+        #[path = "errors.rs"]
+        mod errors;
+        #[path = "joints.rs"]
+        mod joints;
+        #[path = "live.rs"]
+        mod live;
+        #[path = "project.rs"]
+        mod project;
+        #[path = "properties.rs"]
+        mod properties;
+        #[path = "query.rs"]
+        mod query;
+        #[path = "reach.rs"]
+        mod reach;
+        #[path = "reference.rs"]
+        mod reference;
+        // Some helpers of the scenes serve only the 3D build's other tests.
+        #[allow(dead_code)]
+        #[path = "scenes.rs"]
+        pub mod scenes;
+        #[path = "vectors.rs"]
+        mod vectors;
+        #[path = "world.rs"]
+        pub mod world;
+    };
+}
+
+// Both dimensions mount the same test files on purpose.
+#[cfg(feature = "dim2")]
+#[allow(clippy::duplicate_mod)]
+mod dim2;
+#[cfg(feature = "dim3")]
+#[allow(clippy::duplicate_mod)]
+mod dim3;
+
+#[cfg(feature = "dim3")]
 mod alloc;
-mod boundary;
+#[cfg(feature = "dim3")]
 mod determinism;
-mod driver;
+#[cfg(feature = "dim3")]
 mod edges;
-mod errors;
-mod joints;
-mod live;
-mod project;
-mod properties;
-mod query;
-mod reach;
-mod reference;
-#[cfg(feature = "serde")]
+#[cfg(all(feature = "dim3", feature = "serde"))]
 mod saving;
-mod scenes;
+#[cfg(feature = "dim3")]
 mod soak;
+#[cfg(feature = "dim3")]
 mod stability;
-mod vectors;
-mod world;
 
+#[cfg(feature = "dim3")]
 #[global_allocator]
 static ALLOCATOR: alloc::Counting = alloc::Counting;

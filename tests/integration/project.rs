@@ -3,10 +3,11 @@
 //! the response, collision types are kept, runtime changes are followed, and
 //! a world with layers and no rules steps bit for bit as plain Rapier.
 
-use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionRule, CollisionRuleSet, RuleHooks};
+use super::{at, cuboid};
 
-use crate::scenes::Scene;
+use super::scenes::Scene;
 use CollisionRule::*;
 
 fn layer(memberships: Group, filter: Group) -> InteractionGroups {
@@ -22,22 +23,20 @@ const WORLD: Group = Group::GROUP_3;
 /// its project collision groups.
 fn layered_pile(groups: [InteractionGroups; 4]) -> (PhysicsWorld, Vec<RigidBodyHandle>) {
     let mut world = PhysicsWorld::new();
-    let ground =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+    let ground = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
     world.insert_collider(
-        ColliderBuilder::cuboid(20.0, 0.5, 20.0).collision_groups(layer(WORLD, Group::ALL)),
+        cuboid(20.0, 0.5, 20.0).collision_groups(layer(WORLD, Group::ALL)),
         Some(ground),
     );
     let bodies = (0..20)
         .map(|i| {
             let (column, level) = (i / 5, i % 5);
-            let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(
-                column as f32 * 1.01,
-                0.5 + level as f32 * 1.05,
-                0.0,
-            )));
+            let body = world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .translation(at(column as f32 * 1.01, 0.5 + level as f32 * 1.05)),
+            );
             world.insert_collider(
-                ColliderBuilder::cuboid(0.5, 0.5, 0.5).collision_groups(groups[column]),
+                cuboid(0.5, 0.5, 0.5).collision_groups(groups[column]),
                 Some(body),
             );
             body
@@ -287,16 +286,16 @@ fn project_collision_types_are_kept_and_pair_a_hooked_kinematic_with_a_wall() {
         let wall_body = scene.world.insert_body(RigidBodyBuilder::fixed());
         let wall = scene
             .world
-            .insert_collider(ColliderBuilder::cuboid(1.0, 1.0, 1.0), Some(wall_body));
+            .insert_collider(cuboid(1.0, 1.0, 1.0), Some(wall_body));
         let door = scene
             .world
-            .insert_body(RigidBodyBuilder::fixed().translation(Vector::new(8.0, 1.0, 0.0)));
+            .insert_body(RigidBodyBuilder::fixed().translation(at(8.0, 1.0)));
         let door = scene
             .world
-            .insert_collider(ColliderBuilder::cuboid(1.0, 1.0, 1.0), Some(door));
-        let body = scene.world.insert_body(
-            RigidBodyBuilder::kinematic_position_based().translation(Vector::new(0.5, 0.0, 0.0)),
-        );
+            .insert_collider(cuboid(1.0, 1.0, 1.0), Some(door));
+        let body = scene
+            .world
+            .insert_body(RigidBodyBuilder::kinematic_position_based().translation(at(0.5, 0.0)));
         let mut sensor = ColliderBuilder::ball(0.5).sensor(true);
         if project_types {
             sensor = sensor.active_collision_types(
@@ -473,10 +472,9 @@ impl PhysicsHooks for ProjectHooks {
 #[test]
 fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
     let mut world = PhysicsWorld::new();
-    let platform =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, 2.0, 0.0)));
+    let platform = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, 2.0)));
     let deck = world.insert_collider(
-        ColliderBuilder::cuboid(4.0, 0.1, 4.0)
+        cuboid(4.0, 0.1, 4.0)
             .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS)
             .user_data(1),
         Some(platform),
@@ -484,12 +482,11 @@ fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
     // A ball thrown up through the platform, and a ghost dropped onto it.
     let ball = world.insert_body(
         RigidBodyBuilder::dynamic()
-            .translation(Vector::new(-1.0, 0.0, 0.0))
-            .linvel(Vector::new(0.0, 8.0, 0.0)),
+            .translation(at(-1.0, 0.0))
+            .linvel(at(0.0, 8.0)),
     );
     world.insert_collider(ColliderBuilder::ball(0.25), Some(ball));
-    let ghost =
-        world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(1.0, 3.0, 0.0)));
+    let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(at(1.0, 3.0)));
     let g = world.insert_collider(ColliderBuilder::ball(0.25), Some(ghost));
     let mut hooks = RuleHooks::default();
     hooks.rules_mut().set_specific(ghost, platform, NoResponse);
@@ -497,7 +494,7 @@ fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
     let mut paired = false;
     for _ in 0..120 {
         hooks.step(&mut world);
-        paired |= hooks.pair_rule(g, deck) == Some(NoResponse);
+        paired |= hooks.pair_rule_in(&world, g, deck) == Some(NoResponse);
     }
     let (yb, yg) = (
         world.bodies[ball].translation().y,

@@ -2,12 +2,12 @@
 //! the naive model of `reference.rs`: every collider pair must resolve as the
 //! reference says, in both argument orders, and the getters must agree.
 
+use super::rapier::prelude::*;
+use super::rules::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
-use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
-use rapier3d::prelude::*;
 
-use crate::reference::Model;
+use super::reference::Model;
 
 #[derive(Clone, Debug)]
 enum Op {
@@ -397,8 +397,8 @@ impl Run {
 /// others.
 fn config(cases: u32) -> Config {
     Config {
-        cases: crate::world::env_or("PROPS_CASES", cases, |v| v.parse().ok()),
-        rng_seed: RngSeed::Fixed(crate::world::env_or("PROPS_SEED", 0x5eed_c011_1de5, |v| {
+        cases: super::world::env_or("PROPS_CASES", cases, |v| v.parse().ok()),
+        rng_seed: RngSeed::Fixed(super::world::env_or("PROPS_SEED", 0x5eed_c011_1de5, |v| {
             u64::from_str_radix(v, 16).ok()
         })),
         failure_persistence: None,

@@ -2,9 +2,10 @@
 //! and with Rapier's kinematic character controller, beside Rapier's own
 //! query filter groups.
 
-use rapier_collision_rules::{CollisionRule, CollisionRuleSet};
-use rapier3d::control::KinematicCharacterController;
-use rapier3d::prelude::*;
+use super::rapier::control::KinematicCharacterController;
+use super::rapier::prelude::*;
+use super::rules::{CollisionRule, CollisionRuleSet};
+use super::{at, cuboid};
 
 /// A corridor along +x: a door at x = 2 and a wall at x = 6, and a
 /// kinematic character (a ball) at the origin.
@@ -17,9 +18,9 @@ struct Corridor {
 
 fn corridor() -> Corridor {
     let mut world = PhysicsWorld::new();
-    let slab = |x: f32| RigidBodyBuilder::fixed().translation(Vector::new(x, 0.0, 0.0));
+    let slab = |x: f32| RigidBodyBuilder::fixed().translation(at(x, 0.0));
     let shape = || {
-        ColliderBuilder::cuboid(0.1, 2.0, 2.0).collision_groups(InteractionGroups::new(
+        cuboid(0.1, 2.0, 2.0).collision_groups(InteractionGroups::new(
             Group::GROUP_2,
             Group::ALL,
             InteractionTestMode::And,
@@ -120,7 +121,7 @@ fn walk(rules: &CollisionRuleSet) -> f32 {
                 &queries,
                 collider.shape(),
                 collider.position(),
-                Vector::new(2.0 * dt, 0.0, 0.0),
+                at(2.0 * dt, 0.0),
                 |_| {},
             );
             world.bodies[body].translation() + movement.translation

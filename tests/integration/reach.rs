@@ -1,57 +1,144 @@
 //! What the rules reach, and only that, is watched, planned and hooked: a
-//! specific rule hooks its cheaper side, a world without rules is left as
+//! specific rule is Rapier groups or hooks its cheaper side, a world without rules is left as
 //! Rapier has it, and the full passes say why they run.
 
-use rapier_collision_rules::{CollisionGroup, CollisionRule, FullPass, RuleHooks};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionGroup, CollisionRule, FullPass, RuleHooks};
 
-use crate::scenes::Scene;
+use super::scenes::Scene;
 use CollisionRule::*;
 
 fn hooked(scene: &Scene, collider: ColliderHandle) -> bool {
     !scene.world.colliders[collider].active_hooks().is_empty()
 }
 
+/// The ghost's collision (`NoPair`) or solver (`NoResponse`) groups, and
+/// the floor's, as the planner left them.
+fn groups(scene: &Scene, rule: CollisionRule, collider: ColliderHandle) -> InteractionGroups {
+    let collider = &scene.world.colliders[collider];
+    if rule == NoPair {
+        collider.collision_groups()
+    } else {
+        collider.solver_groups()
+    }
+}
+
 #[test]
-fn a_specific_rule_hooks_the_ghost_not_the_floor_it_names() {
+fn a_specific_rule_is_rapier_groups_or_hooks_the_ghost_not_the_floor_it_names() {
     // Either side may hold the entry: the floor is a hub, the ghost is not.
-    for floor_names_ghost in [false, true] {
-        let mut scene = Scene::new();
-        let (ghost, g) = scene.cube(0.0, 2.0);
-        let mut others = Vec::new();
-        for i in 0..4 {
-            others.push(scene.cube(2.0 + 1.5 * i as f32, 0.5).1);
+    // NoPair and NoResponse are Rapier groups (a bit of the ghost's own,
+    // which the floor leaves out); NoContacts has no group form and hooks
+    // the ghost.
+    for rule in [NoResponse, NoPair, NoContacts] {
+        for floor_names_ghost in [false, true] {
+            let mut scene = Scene::new();
+            let (ghost, g) = scene.cube(0.0, 2.0);
+            let mut others = Vec::new();
+            for i in 0..4 {
+                others.push(scene.cube(2.0 + 1.5 * i as f32, 0.5).1);
+            }
+            let mut hooks = RuleHooks::default();
+            if floor_names_ghost {
+                hooks.rules_mut().set_specific(scene.ground, ghost, rule);
+            } else {
+                hooks.rules_mut().set_specific(ghost, scene.ground, rule);
+            }
+            let mut paired = false;
+            for _ in 0..60 {
+                hooks.step(&mut scene.world);
+                paired |= hooks.pair_rule_in(&scene.world, g, scene.floor) == Some(rule);
+            }
+            let stats = hooks.stats();
+            let case = format!("{rule:?}, floor names ghost: {floor_names_ghost}");
+            let by_groups = rule != NoContacts;
+            assert!(
+                hooked(&scene, g) != by_groups && !hooked(&scene, scene.floor),
+                "{case}: ghost hooked {}, floor hooked {}",
+                hooked(&scene, g),
+                hooked(&scene, scene.floor)
+            );
+            assert_eq!(
+                stats.hooked_colliders,
+                usize::from(!by_groups),
+                "{case}: {stats:?}"
+            );
+            if by_groups {
+                let (mine, floor) = (groups(&scene, rule, g), groups(&scene, rule, scene.floor));
+                assert!(
+                    mine.memberships.bits().count_ones() == 1
+                        && mine.filter == Group::ALL
+                        && floor.memberships == Group::ALL
+                        && floor.filter == Group::ALL - mine.memberships,
+                    "{case}: ghost {mine:?}, floor {floor:?}"
+                );
+            }
+            assert!(others.iter().all(|&c| !hooked(&scene, c)));
+            assert!(
+                paired == (rule != NoPair) && scene.y(ghost) < -1.0,
+                "{case}: the ghost passed: y = {}, paired {paired}",
+                scene.y(ghost)
+            );
         }
-        let mut hooks = RuleHooks::default();
-        if floor_names_ghost {
-            hooks
-                .rules_mut()
-                .set_specific(scene.ground, ghost, NoResponse);
-        } else {
-            hooks
-                .rules_mut()
-                .set_specific(ghost, scene.ground, NoResponse);
-        }
-        let mut paired = false;
-        for _ in 0..60 {
-            hooks.step(&mut scene.world);
-            paired |= hooks.pair_rule(g, scene.floor) == Some(NoResponse);
-        }
-        let stats = hooks.stats();
+    }
+}
+
+#[test]
+fn past_the_free_bits_the_ghosts_are_hooked_and_every_one_passes() {
+    // 40 ghosts, each with its own NoResponse entry about the floor: each
+    // carries a bit of its own while they last (32 with no other bits in
+    // use), the rest are hooked.
+    let mut scene = Scene::new();
+    let ghosts: Vec<_> = (0..40)
+        .map(|i| scene.cube((i % 8) as f32 * 1.5 - 6.0, 2.0 + (i / 8) as f32 * 1.5))
+        .collect();
+    let mut hooks = RuleHooks::default();
+    for &(ghost, _) in &ghosts {
+        hooks
+            .rules_mut()
+            .set_specific(ghost, scene.ground, NoResponse);
+    }
+    for _ in 0..90 {
+        hooks.step(&mut scene.world);
+    }
+    let by_bits = ghosts.iter().filter(|&&(_, g)| !hooked(&scene, g)).count();
+    assert_eq!(by_bits, 32, "ghosts with a bit of their own");
+    assert!(!hooked(&scene, scene.floor), "the floor is not hooked");
+    for &(ghost, g) in &ghosts {
         assert!(
-            hooked(&scene, g) && !hooked(&scene, scene.floor),
-            "floor names ghost: {floor_names_ghost}: ghost hooked {}, floor hooked {}",
+            scene.y(ghost) < -1.0,
+            "ghost {g:?} (hooked {}) passed the floor: y = {}",
             hooked(&scene, g),
-            hooked(&scene, scene.floor)
-        );
-        assert_eq!(stats.hooked_colliders, 1, "{stats:?}");
-        assert!(others.iter().all(|&c| !hooked(&scene, c)));
-        assert!(
-            paired && scene.y(ghost) < -1.0,
-            "the ghost passed: y = {}, paired {paired}",
             scene.y(ghost)
         );
     }
+}
+
+#[test]
+fn a_ghost_with_the_projects_own_groups_is_hooked_instead() {
+    // The project narrows the ghost's collision groups: no single group
+    // test says both, so the entry is the hook's.
+    let mut scene = Scene::new();
+    let (ghost, g) = scene.cube(0.0, 2.0);
+    let own = InteractionGroups::new(Group::GROUP_1, Group::ALL, InteractionTestMode::And);
+    scene.world.colliders[g].set_solver_groups(own);
+    let mut hooks = RuleHooks::default();
+    hooks
+        .rules_mut()
+        .set_specific(ghost, scene.ground, NoResponse);
+    for _ in 0..60 {
+        hooks.step(&mut scene.world);
+    }
+    assert!(hooked(&scene, g) && !hooked(&scene, scene.floor));
+    assert_eq!(
+        scene.world.colliders[g].solver_groups(),
+        own,
+        "the project's groups stay"
+    );
+    assert!(
+        scene.y(ghost) < -1.0,
+        "the ghost passed: y = {}",
+        scene.y(ghost)
+    );
 }
 
 #[test]

@@ -4,8 +4,8 @@
 
 use std::collections::HashMap;
 
-use rapier_collision_rules::{CollisionGroup, CollisionRule, Node, RuleError};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionGroup, CollisionRule, Node, RuleError};
 
 #[derive(Clone, Debug, Default)]
 pub struct Record {

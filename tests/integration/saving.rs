@@ -2,7 +2,7 @@
 //! alone and with the Rapier world they belong to, and resolve every pair as
 //! before; the live-pair table rebuilds itself at the next step.
 
-use crate::world::numeric_leaves;
+use crate::dim3::world::numeric_leaves;
 use rapier_collision_rules::{
     CollisionGroup, CollisionRule, CollisionRuleSet, RuleError, RuleHooks,
 };
@@ -222,7 +222,7 @@ fn a_corrupt_save_loads_as_an_error_naming_the_problem() {
 
 proptest::proptest! {
     #![proptest_config(proptest::test_runner::Config {
-        cases: crate::world::env_or("LOADER_CASES", 512, |v| v.parse().ok()),
+        cases: crate::dim3::world::env_or("LOADER_CASES", 512, |v| v.parse().ok()),
         rng_seed: proptest::test_runner::RngSeed::Fixed(0x10ad_5eed),
         failure_persistence: None,
         ..proptest::test_runner::Config::default()

@@ -4,8 +4,8 @@
 
 use std::collections::HashMap;
 
-use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, Stage};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, Stage};
 use toml::{Table, Value};
 
 /// A scene built from one `[[case]]`: Rapier sets, a rule set, and names.

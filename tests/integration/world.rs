@@ -4,8 +4,9 @@
 
 use std::collections::HashMap;
 
-use rapier_collision_rules::{CollisionGroup, CollisionRule, Node, RuleHooks, Stage};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionGroup, CollisionRule, Node, RuleHooks, Stage};
+use super::{at, cube, pose_bits, slab};
 
 #[derive(Clone, Debug)]
 pub enum Edit {
@@ -134,9 +135,8 @@ impl Run {
         // Recycling makes native pairs' contacts differ in the last bits from
         // hooked ones; without it the two runs can be compared exactly.
         world.integration_parameters.contact_recycling = !locked;
-        let ground =
-            world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-        let floor = world.insert_collider(ColliderBuilder::cuboid(5.0, 0.5, 5.0), Some(ground));
+        let ground = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
+        let floor = world.insert_collider(slab(5.0, 0.5), Some(ground));
         let mut hooks = RuleHooks::default();
         hooks.set_planner(planner);
         let mut groups = vec![
@@ -162,14 +162,12 @@ impl Run {
     }
 
     fn add_cube(&mut self, x: f32, y: f32, kind: usize) {
-        let mut builder = RigidBodyBuilder::new(KINDS[kind]).translation(Vector::new(x, y, 0.0));
+        let mut builder = RigidBodyBuilder::new(KINDS[kind]).translation(at(x, y));
         if self.locked {
             builder = builder.locked_axes(LockedAxes::all()).can_sleep(false);
         }
         let body = self.world.insert_body(builder);
-        let collider = self
-            .world
-            .insert_collider(ColliderBuilder::cuboid(0.4, 0.4, 0.4), Some(body));
+        let collider = self.world.insert_collider(cube(0.4), Some(body));
         self.bodies.push(body);
         self.colliders.push(collider);
     }
@@ -240,7 +238,7 @@ impl Run {
             Edit::AddCollider(b) => {
                 let handle = self.body(b);
                 if self.world.bodies.contains(handle) {
-                    let shape = ColliderBuilder::ball(0.3).translation(Vector::new(0.0, 0.5, 0.0));
+                    let shape = ColliderBuilder::ball(0.3).translation(at(0.0, 0.5));
                     let collider = self.world.insert_collider(shape, Some(handle));
                     self.colliders.push(collider);
                 }
@@ -418,16 +416,14 @@ impl Run {
     }
 
     /// Every body's position, bit for bit, in handle order.
-    pub fn poses(&self) -> Vec<[u32; 7]> {
+    pub fn poses(&self) -> Vec<Vec<u32>> {
         let mut poses: Vec<_> = self
             .world
             .bodies
             .iter()
             .map(|(handle, body)| {
-                let p = body.position();
-                let (t, r) = (p.translation, p.rotation);
                 let (index, _) = handle.into_raw_parts();
-                (index, [t.x, t.y, t.z, r.x, r.y, r.z, r.w].map(f32::to_bits))
+                (index, pose_bits(body.position()))
             })
             .collect();
         poses.sort_by_key(|p| p.0);

@@ -1,24 +1,14 @@
-//! Every rule at work in one scene, stepped for three seconds with
-//! `RuleHooks`: a ragdoll whose limbs ignore each other but land on the
-//! world, a vehicle whose wheels sit under the chassis in the parent map, a
-//! ghost walking through a wall while its contact events fire, a pickup zone
-//! (a live `NoContacts` pair, no contacts), debris that never pairs with the
-//! player, kinematic platforms that do not push each other, and CCD bullets
-//! against a `NoResponse` shield and a `Normal` wall.
-//!
-//! Prints one row per actor (rule, who decided it, pairs, contacts, events,
-//! the measured outcome), writes side views of the scene at a few instants
-//! to `target/showcase/`, and exits non-zero if any outcome is not what the
-//! rule promises.
-//!
-//! Run it with `cargo run --release --example showcase`.
+//! The showcase's scene, written once for both dimensions: every rule at
+//! work, stepped for three seconds, with one row per actor and side views
+//! (see `main.rs` of `showcase` and `showcase2d`).
 
 use std::collections::HashMap;
-use std::fmt::Write as _;
 use std::sync::mpsc::{Receiver, channel};
 
-use rapier_collision_rules::{CollisionRule, CollisionRuleSet, Explanation, RuleError, RuleHooks};
-use rapier3d::prelude::*;
+use crate::rapier::prelude::*;
+use crate::rules::{CollisionRule, CollisionRuleSet, Explanation, RuleError, RuleHooks};
+use crate::view::{self, Shape};
+use crate::{at, axle, cuboid};
 
 const STEPS: usize = 180;
 const SNAPSHOTS: [usize; 4] = [0, 40, 90, 180];
@@ -49,7 +39,7 @@ struct Scene {
 }
 
 fn body_at(world: &mut PhysicsWorld, builder: RigidBodyBuilder, x: f32, y: f32) -> RigidBodyHandle {
-    world.insert_body(builder.translation(Vector::new(x, y, 0.0)))
+    world.insert_body(builder.translation(at(x, y)))
 }
 
 fn evented(collider: ColliderBuilder) -> ColliderBuilder {
@@ -60,7 +50,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
     let mut world = PhysicsWorld::new();
     let mut rules = CollisionRuleSet::default();
     let ground = body_at(&mut world, RigidBodyBuilder::fixed(), 0.0, -0.5);
-    let floor = world.insert_collider(ColliderBuilder::cuboid(40.0, 0.5, 4.0), Some(ground));
+    let floor = world.insert_collider(cuboid(40.0, 0.5, 4.0), Some(ground));
     let mut actors = Vec::new();
 
     // A ragdoll: three overlapping limbs in one group that ignores itself.
@@ -68,8 +58,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         .iter()
         .map(|&(x, y)| {
             let body = body_at(&mut world, RigidBodyBuilder::dynamic(), x, y);
-            let collider =
-                world.insert_collider(ColliderBuilder::cuboid(0.4, 0.25, 0.25), Some(body));
+            let collider = world.insert_collider(cuboid(0.4, 0.25, 0.25), Some(body));
             (body, collider)
         })
         .collect();
@@ -86,15 +75,12 @@ fn build() -> Result<(Scene, Handles), RuleError> {
 
     // A vehicle: wheels jointed under the chassis, inside its outline.
     let chassis = body_at(&mut world, RigidBodyBuilder::dynamic(), -8.0, 1.0);
-    let hull = world.insert_collider(ColliderBuilder::cuboid(1.5, 0.4, 0.8), Some(chassis));
+    let hull = world.insert_collider(cuboid(1.5, 0.4, 0.8), Some(chassis));
     let mut wheels = Vec::new();
     for dx in [-1.0, 1.0] {
         let wheel = body_at(&mut world, RigidBodyBuilder::dynamic(), -8.0 + dx, 0.5);
         let tyre = world.insert_collider(ColliderBuilder::ball(0.5), Some(wheel));
-        let axle = RevoluteJointBuilder::new(Vector::Z)
-            .local_anchor1(Vector::new(dx, -0.5, 0.0))
-            .local_anchor2(Vector::ZERO);
-        world.insert_impulse_joint(chassis, wheel, axle);
+        world.insert_impulse_joint(chassis, wheel, axle(at(dx, -0.5)));
         rules.set_parent(wheel, chassis)?;
         wheels.push(tyre);
     }
@@ -111,15 +97,14 @@ fn build() -> Result<(Scene, Handles), RuleError> {
     let ghost = body_at(
         &mut world,
         RigidBodyBuilder::dynamic()
-            .linvel(Vector::new(3.0, 0.0, 0.0))
+            .linvel(at(3.0, 0.0))
             .gravity_scale(0.0),
         -2.0,
         1.2,
     );
-    let spirit =
-        world.insert_collider(evented(ColliderBuilder::cuboid(0.4, 0.5, 0.4)), Some(ghost));
+    let spirit = world.insert_collider(evented(cuboid(0.4, 0.5, 0.4)), Some(ghost));
     let wall_body = body_at(&mut world, RigidBodyBuilder::fixed(), 2.0, 1.5);
-    let wall = world.insert_collider(ColliderBuilder::cuboid(0.1, 1.5, 2.0), Some(wall_body));
+    let wall = world.insert_collider(cuboid(0.1, 1.5, 2.0), Some(wall_body));
     rules.set_specific(ghost, wall_body, CollisionRule::NoResponse);
     actors.push(Actor {
         name: "ghost",
@@ -131,7 +116,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
     let player = body_at(&mut world, RigidBodyBuilder::dynamic(), 10.0, 1.0);
     let avatar = world.insert_collider(evented(ColliderBuilder::capsule_y(0.5, 0.5)), Some(player));
     let zone_body = body_at(&mut world, RigidBodyBuilder::fixed(), 10.0, 1.0);
-    let zone = world.insert_collider(ColliderBuilder::cuboid(1.5, 1.0, 1.5), Some(zone_body));
+    let zone = world.insert_collider(cuboid(1.5, 1.0, 1.5), Some(zone_body));
     rules.set_personal(zone, CollisionRule::NoContacts);
     actors.push(Actor {
         name: "pickup",
@@ -146,7 +131,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         .map(|&x| {
             let body = body_at(&mut world, RigidBodyBuilder::dynamic(), x, 4.0);
             rules.set_group(body, Some(rubble));
-            world.insert_collider(ColliderBuilder::cuboid(0.2, 0.2, 0.2), Some(body))
+            world.insert_collider(cuboid(0.2, 0.2, 0.2), Some(body))
         })
         .collect();
     actors.push(Actor {
@@ -164,13 +149,13 @@ fn build() -> Result<(Scene, Handles), RuleError> {
     let platform = |world: &mut PhysicsWorld, x: f32, vx: f32| {
         let body = body_at(
             world,
-            RigidBodyBuilder::kinematic_velocity_based().linvel(Vector::new(vx, 0.0, 0.0)),
+            RigidBodyBuilder::kinematic_velocity_based().linvel(at(vx, 0.0)),
             x,
             3.0,
         );
         (
             body,
-            world.insert_collider(ColliderBuilder::cuboid(1.0, 0.2, 1.0), Some(body)),
+            world.insert_collider(cuboid(1.0, 0.2, 1.0), Some(body)),
         )
     };
     let (left, a) = platform(&mut world, 17.0, 1.0);
@@ -184,7 +169,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
     // CCD bullets: one at a NoResponse shield, one at a Normal wall.
     let bullet = |world: &mut PhysicsWorld, y: f32| {
         let builder = RigidBodyBuilder::dynamic()
-            .linvel(Vector::new(200.0, 0.0, 0.0))
+            .linvel(at(200.0, 0.0))
             .gravity_scale(0.0)
             .ccd_enabled(true);
         let body = body_at(world, builder, 25.0, y);
@@ -196,9 +181,9 @@ fn build() -> Result<(Scene, Handles), RuleError> {
     let (shot, round) = bullet(&mut world, 2.0);
     let (stopped, slug) = bullet(&mut world, 4.5);
     let shield_body = body_at(&mut world, RigidBodyBuilder::fixed(), 30.0, 2.0);
-    let shield = world.insert_collider(ColliderBuilder::cuboid(0.02, 0.8, 2.0), Some(shield_body));
+    let shield = world.insert_collider(cuboid(0.02, 0.8, 2.0), Some(shield_body));
     let wall2_body = body_at(&mut world, RigidBodyBuilder::fixed(), 30.0, 4.5);
-    let wall2 = world.insert_collider(ColliderBuilder::cuboid(0.02, 0.8, 2.0), Some(wall2_body));
+    let wall2 = world.insert_collider(cuboid(0.02, 0.8, 2.0), Some(wall2_body));
     rules.set_specific(shield, shot, CollisionRule::NoResponse);
     actors.push(Actor {
         name: "bullet/shield",
@@ -254,7 +239,9 @@ struct Seen {
     stopped: usize,
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// Builds and steps the scene, prints the table, writes the side views to
+/// `target/showcase/{picture}`; an error if an actor broke its promise.
+pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
     let (scene, h) = build()?;
     let Scene {
         mut world,
@@ -413,33 +400,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         hooks.hooked_count()
     );
 
-    let svg = render(&frames);
-    std::fs::write(out.join("scene.svg"), svg)?;
+    let svg = view::render(&frames, LABELS);
+    std::fs::write(out.join(picture), svg)?;
     println!(
         "side views at steps {SNAPSHOTS:?}: {}",
-        out.join("scene.svg").display()
+        out.join(picture).display()
     );
     if failures > 0 {
         return Err(format!("{failures} actor(s) did not do what their rule promises").into());
     }
     Ok(())
-}
-
-/// One drawable box: its x-y extent and its colour.
-struct Shape {
-    min: (f32, f32),
-    max: (f32, f32),
-    color: &'static str,
-}
-
-fn color(rule: Option<CollisionRule>) -> &'static str {
-    match rule {
-        Some(CollisionRule::Normal) | Some(CollisionRule::Defer) => "#4c78a8",
-        Some(CollisionRule::NoResponse) => "#f58518",
-        Some(CollisionRule::NoContacts) => "#54a24b",
-        Some(CollisionRule::NoPair) => "#b279a2",
-        None => "#9d9d9d",
-    }
 }
 
 /// Every collider's extent: an actor's colliders coloured by the rule of the
@@ -455,7 +425,7 @@ fn snapshot(world: &PhysicsWorld, hooks: &RuleHooks, actors: &[Actor]) -> Vec<Sh
             .pair_rule_in(world, a, b)
             .or((rule == CollisionRule::NoPair).then_some(rule));
         for &c in &actor.colliders {
-            colors.insert(c, color(shown));
+            colors.insert(c, view::color(shown));
         }
     }
     world
@@ -470,84 +440,4 @@ fn snapshot(world: &PhysicsWorld, hooks: &RuleHooks, actors: &[Actor]) -> Vec<Sh
             }
         })
         .collect()
-}
-
-/// The frames stacked top to bottom, with a legend, as one SVG document.
-fn render(frames: &[(usize, Vec<Shape>)]) -> String {
-    let (x0, x1, y0, y1) = (-20.0f32, 36.0f32, -1.0f32, 6.0f32);
-    let scale = 18.0;
-    let (w, h) = ((x1 - x0) * scale, (y1 - y0) * scale);
-    let mut svg = String::new();
-    let total = h * frames.len() as f32 + 40.0;
-    let _ = writeln!(
-        svg,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{total}" font-family="sans-serif" font-size="12">"#
-    );
-    let _ = writeln!(
-        svg,
-        r##"<rect width="100%" height="100%" fill="#ffffff"/>"##
-    );
-    for (i, (step, shapes)) in frames.iter().enumerate() {
-        let top = i as f32 * h;
-        let _ = writeln!(
-            svg,
-            r#"<text x="6" y="{}">t = {:.2} s</text>"#,
-            top + 14.0,
-            *step as f32 / 60.0
-        );
-        for s in shapes {
-            // Clip what left the view (bullets, debris far below).
-            let (ax, bx) = (s.min.0.max(x0), s.max.0.min(x1));
-            let (ay, by) = (s.min.1.max(y0), s.max.1.min(y1));
-            if ax >= bx || ay >= by {
-                continue;
-            }
-            let (px, py) = ((ax - x0) * scale, top + (y1 - by) * scale);
-            let _ = writeln!(
-                svg,
-                r##"<rect x="{px:.1}" y="{py:.1}" width="{:.1}" height="{:.1}" fill="{}" fill-opacity="0.75" stroke="#333" stroke-width="0.5"/>"##,
-                (bx - ax) * scale,
-                (by - ay) * scale,
-                s.color
-            );
-        }
-        let _ = writeln!(
-            svg,
-            r##"<line x1="0" y1="{0}" x2="{w}" y2="{0}" stroke="#ccc"/>"##,
-            top + h
-        );
-        if i == 0 {
-            for (name, x) in LABELS {
-                let (lx, ly) = ((x - x0) * scale, top + 30.0);
-                let _ = writeln!(
-                    svg,
-                    r#"<text x="{lx:.1}" y="{ly:.1}" text-anchor="middle">{name}</text>"#
-                );
-            }
-        }
-    }
-    let legend = [
-        ("Normal", color(Some(CollisionRule::Normal))),
-        ("NoResponse", color(Some(CollisionRule::NoResponse))),
-        ("NoContacts", color(Some(CollisionRule::NoContacts))),
-        ("NoPair", color(Some(CollisionRule::NoPair))),
-        ("pair not live", color(None)),
-    ];
-    for (i, (name, fill)) in legend.iter().enumerate() {
-        let x = 10.0 + i as f32 * 120.0;
-        let y = total - 26.0;
-        let _ = writeln!(
-            svg,
-            r#"<rect x="{x}" y="{y}" width="14" height="14" fill="{fill}"/><text x="{}" y="{}">{name}</text>"#,
-            x + 18.0,
-            y + 12.0
-        );
-    }
-    svg.push_str("</svg>\n");
-    svg
-}
-
-#[test]
-fn every_actor_does_what_its_rule_promises() {
-    main().expect("the showcase's own checks");
 }

@@ -23,6 +23,8 @@ use rapier3d::prelude::*;
 use rules::{CollisionRule, CollisionRuleSet, RuleHooks};
 
 // What the step benchmarks share; this one uses part of it.
+#[path = "common/chart.rs"]
+mod chart;
 #[allow(dead_code)]
 mod common;
 #[path = "common/space3.rs"]
@@ -177,23 +179,12 @@ fn chart(path: &std::path::Path, lines: &[Line]) -> Result<(), Box<dyn std::erro
     let colors = [BLUE, RED, GREEN, MAGENTA];
     for ((label, points), color) in lines.iter().zip(colors) {
         let median: Vec<(f64, f64)> = points.iter().map(|&(x, r)| (x, r[0])).collect();
-        chart
-            .draw_series(LineSeries::new(median.clone(), color.stroke_width(2)))?
-            .label(label.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color));
-        chart.draw_series(median.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+        chart::line(&mut chart, &median, label, color)?;
         chart.draw_series(
             points
                 .iter()
                 .map(|&(x, r)| PathElement::new(vec![(x, r[1]), (x, r[2])], color)),
         )?;
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
-    root.present()?;
-    Ok(())
+    chart::finish(chart, &root)
 }

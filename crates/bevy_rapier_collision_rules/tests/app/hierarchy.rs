@@ -72,3 +72,22 @@ fn a_body_between_plain_entities_finds_its_nearest_body_ancestor() {
     sim.run(2);
     assert_eq!(sim.rules().rules().parents().count(), 0);
 }
+
+#[test]
+fn without_the_pelvis_rule_the_same_limb_lands() {
+    // The control of the test above: bevy_rapier simulates a dynamic body
+    // under a floating one, and it lands.
+    let mut sim = Sim::new();
+    sim.spawn(floor());
+    let pelvis = sim.spawn((ball(0.0, 3.0), GravityScale(0.0)));
+    let limb = sim.spawn((ball(1.0, 0.0), ChildOf(pelvis)));
+    sim.run(92);
+    let y = sim
+        .app
+        .world()
+        .get::<GlobalTransform>(limb)
+        .unwrap()
+        .translation()
+        .y;
+    assert!(super::scene::rests(y), "the limb lands: y = {y}");
+}

@@ -9,6 +9,13 @@ use rapier_collision_rules::{CollisionGroup, CollisionRule};
 /// without a body of its own, the collider's.
 ///
 /// Removing the component clears the group.
+///
+/// # Panics
+///
+/// The plugin panics when it applies a group that the entity's context's
+/// table did not create (a group of a [`ContextRuleTable`](super::ContextRuleTable)
+/// with more groups than the context uses, say): a caller bug, as with
+/// `CollisionRuleSet::set_group`.
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct RuleGroup(pub CollisionGroup);
 

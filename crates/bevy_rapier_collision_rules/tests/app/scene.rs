@@ -31,16 +31,22 @@ impl Sim {
         H: 'static + BevyPhysicsHooks,
         for<'w, 's> SystemParamItem<'w, 's, H>: BevyPhysicsHooks,
     {
-        let mut app = App::new();
-        app.add_plugins((
-            MinimalPlugins,
-            TransformPlugin,
+        Sim::with_plugins(
             RapierPhysicsPlugin::<H>::default(),
             CollisionRulesPlugin::default(),
-        ))
-        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
-            DT,
-        )));
+        )
+    }
+
+    /// An app with bevy_rapier's and the rules' plugins as given (for
+    /// another schedule).
+    pub fn with_plugins(rapier: impl Plugin, rules: CollisionRulesPlugin) -> Sim {
+        let mut app = App::new();
+        app.add_plugins((MinimalPlugins, TransformPlugin))
+            .add_plugins(rapier)
+            .add_plugins(rules)
+            .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
+                DT,
+            )));
         app.finish();
         app.cleanup();
         // Startup, and the first frame (no time has passed: no step).

@@ -98,3 +98,32 @@ fn every_rule_holds_with_substeps_and_catch_up_steps() {
         );
     }
 }
+
+#[test]
+fn in_the_fixed_schedule_edits_and_removals_are_not_missed() {
+    let mut sim = Sim::with_plugins(
+        RapierPhysicsPlugin::<CollisionRulesHooks>::default().in_fixed_schedule(),
+        CollisionRulesPlugin::default().in_fixed_schedule(),
+    );
+    // A fixed schedule at 10 Hz runs once every six frames of 1/60 s.
+    sim.app
+        .insert_resource(Time::<Fixed>::from_hz(10.0))
+        .insert_resource(TimestepMode::Fixed {
+            dt: 0.1,
+            substeps: 1,
+        });
+    let f = sim.spawn(floor());
+    let ghost = sim.spawn((ball(0.0, 1.0), SpecificRules::new().with(f, NoContacts)));
+    let late = sim.spawn((ball(1.0, 2.0), PersonalRule(NoPair)));
+    // Removed in a frame in which the fixed schedule does not run, which
+    // is kept for the next one that does.
+    sim.run(8);
+    sim.entity_mut(late).remove::<PersonalRule>();
+    sim.run(150);
+    assert!(fell_through(sim.y(ghost)), "ghost y = {}", sim.y(ghost));
+    assert!(
+        rests(sim.y(late)),
+        "the removal reached the rules: y = {}",
+        sim.y(late)
+    );
+}

@@ -18,27 +18,21 @@ type Bodies<'w, 's> = Query<
     ),
 >;
 
-type Moved = Or<(
-    Changed<ChildOf>,
-    Changed<RapierRigidBodyHandle>,
-    Changed<RapierContextEntityLink>,
-)>;
-
-/// Follows re-parenting, new bodies and context changes: the bodies at or
-/// below an entity whose link changed get their parent again.
+/// Follows re-parenting, new bodies and context changes (an entity moved
+/// to another context gets a new body from bevy_rapier), as the plugin's
+/// observers noted them: the bodies at or below each such entity get their
+/// parent again. Nothing else is looked at.
 pub(crate) fn follow_hierarchy(
     mut ledger: ResMut<Ledger>,
     mut contexts: Query<&mut CollisionRules>,
     bodies: Bodies,
     parents: Query<&ChildOf>,
     children: Query<&Children>,
-    moved: Query<Entity, Moved>,
 ) {
-    let mut roots: Vec<Entity> = moved.iter().collect();
-    roots.append(&mut ledger.unparented);
-    if roots.is_empty() {
+    if ledger.moved.is_empty() {
         return;
     }
+    let roots = std::mem::take(&mut ledger.moved);
     // A body below a moved entity keeps its nearest body ancestor unless
     // there is none between them: the bodies nearest to each root.
     let mut affected = Vec::new();

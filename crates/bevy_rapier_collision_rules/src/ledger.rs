@@ -38,11 +38,10 @@ pub(crate) struct Ledger {
     /// an entity without a physics object, or the context has no rules
     /// component yet): tried again every frame while they wait.
     pub(crate) waiting: HashSet<Entity>,
-    /// Entities that lost a rule component or the hierarchy link since the
-    /// last application (collected in the main schedule, where removals
-    /// are never missed).
+    /// Entities that lost a rule component since the last application.
     pub(crate) removed: Vec<Entity>,
-    pub(crate) unparented: Vec<Entity>,
+    /// Entities that got or lost a parent, or got a new rigid body.
+    pub(crate) moved: Vec<Entity>,
     /// Colliders that lost one of bevy_rapier's settings components.
     pub(crate) settings_removed: Vec<Entity>,
 }

@@ -5,7 +5,9 @@ use bevy::ecs::schedule::ScheduleLabel;
 use bevy::prelude::*;
 use bevy_rapier3d::plugin::PhysicsSet;
 use bevy_rapier3d::plugin::context::RapierContextSimulation;
-use bevy_rapier3d::prelude::{ActiveCollisionTypes, ActiveHooks, CollisionGroups, SolverGroups};
+use bevy_rapier3d::prelude::{
+    ActiveCollisionTypes, ActiveHooks, CollisionGroups, RapierRigidBodyHandle, SolverGroups,
+};
 
 use super::edits::apply_rule_components;
 use super::hierarchy::follow_hierarchy;
@@ -110,17 +112,17 @@ impl Plugin for CollisionRulesPlugin {
                     .before(PhysicsSet::Writeback),
             ),
         );
-        // Removals are read in the main schedule, which never misses them
-        // (a fixed schedule may not run in a frame).
-        let collect = collect_removals.before(RulesSystems::Prepare);
-        if self.schedule == PostUpdate.intern() {
-            app.add_systems(PostUpdate, collect);
-        } else {
-            app.add_systems(PostUpdate, collect_removals);
+        // What the systems would otherwise find by scanning every body
+        // and child entity each frame, or could miss in a schedule that
+        // does not run every frame, is noted as it happens.
+        app.add_observer(note_rules_removed)
+            .add_observer(note_settings_removed);
+        if self.hierarchy {
+            app.add_observer(note_moved).add_observer(note_unparented);
         }
         let prepare = (
             share_table,
-            follow_hierarchy.run_if(follow(self.hierarchy)),
+            follow_hierarchy,
             apply_rule_components,
             notice_project_settings,
             prepare_contexts,
@@ -132,36 +134,37 @@ impl Plugin for CollisionRulesPlugin {
     }
 }
 
-fn follow(enabled: bool) -> impl FnMut() -> bool + Clone {
-    move || enabled
+/// A new parent, or a new body (made by bevy_rapier, also when an entity
+/// moves to another context).
+fn note_moved(event: On<Insert<(ChildOf, RapierRigidBodyHandle)>>, mut ledger: ResMut<Ledger>) {
+    ledger.moved.push(event.entity);
 }
 
-/// Keeps the entities that lost rule components, a parent or one of
-/// bevy_rapier's settings components, for the next application.
-#[allow(clippy::too_many_arguments)]
-fn collect_removals(
+fn note_unparented(event: On<Remove<ChildOf>>, mut ledger: ResMut<Ledger>) {
+    ledger.moved.push(event.entity);
+}
+
+fn note_rules_removed(
+    event: On<Remove<(RuleGroup, PersonalRule, SpecificRules)>>,
     mut ledger: ResMut<Ledger>,
-    mut groups: RemovedComponents<RuleGroup>,
-    mut personal: RemovedComponents<PersonalRule>,
-    mut specific: RemovedComponents<SpecificRules>,
-    mut parents: RemovedComponents<ChildOf>,
-    mut collision_groups: RemovedComponents<CollisionGroups>,
-    mut solver_groups: RemovedComponents<SolverGroups>,
-    mut types: RemovedComponents<ActiveCollisionTypes>,
-    mut hooks: RemovedComponents<ActiveHooks>,
 ) {
-    let ledger = &mut *ledger;
-    ledger
-        .removed
-        .extend(groups.read().chain(personal.read()).chain(specific.read()));
-    ledger.unparented.extend(parents.read());
-    ledger.settings_removed.extend(
-        collision_groups
-            .read()
-            .chain(solver_groups.read())
-            .chain(types.read())
-            .chain(hooks.read()),
-    );
+    ledger.removed.push(event.entity);
+}
+
+/// bevy_rapier writes Rapier's default when one of its settings
+/// components is removed.
+fn note_settings_removed(
+    event: On<
+        Remove<(
+            CollisionGroups,
+            SolverGroups,
+            ActiveCollisionTypes,
+            ActiveHooks,
+        )>,
+    >,
+    mut ledger: ResMut<Ledger>,
+) {
+    ledger.settings_removed.push(event.entity);
 }
 
 /// Copies the group table into each context's rules: the context's own

@@ -91,3 +91,16 @@ fn without_the_pelvis_rule_the_same_limb_lands() {
         .y;
     assert!(super::scene::rests(y), "the limb lands: y = {y}");
 }
+
+#[test]
+fn without_the_hierarchy_the_parent_map_is_the_projects() {
+    let mut sim = Sim::with_plugins(
+        bevy_rapier3d::prelude::RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
+        CollisionRulesPlugin::default().without_hierarchy(),
+    );
+    let pelvis = sim.spawn((ball(0.0, 3.0), GravityScale(0.0)));
+    let limb = sim.spawn((ball(1.0, 0.0), ChildOf(pelvis)));
+    sim.run(2);
+    let l = body(&sim, limb);
+    assert_eq!(sim.rules().rules().parent(l), None, "ChildOf is not followed");
+}

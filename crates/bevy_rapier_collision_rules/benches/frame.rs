@@ -115,7 +115,7 @@ fn main() {
             let mut plain_ms = Vec::new();
             for _ in 0..repeats {
                 let (mut plain, mut with) = (app(scene, Rules::Plain), app(scene, rules));
-                let frames = if scene == Scene::PileAwake { 120 } else { 300 };
+                let frames = if scene == Scene::PileAwake { 120 } else { 600 };
                 let (tp, tw) = paired(&mut plain, &mut with, frames);
                 ratios.push(tw / tp);
                 plain_ms.push(tp / frames as f64 * 1e3);

@@ -37,13 +37,7 @@ fn a_limb_under_a_pelvis_takes_the_pelvis_rules_until_it_is_unparented() {
         "the limb's parent is the pelvis"
     );
     sim.run(90);
-    let y = sim
-        .app
-        .world()
-        .get::<GlobalTransform>(limb)
-        .unwrap()
-        .translation()
-        .y;
+    let y = sim.global_y(limb);
     assert!(
         fell_through(y),
         "the limb passes the floor as its pelvis says: y = {y}"
@@ -82,13 +76,7 @@ fn without_the_pelvis_rule_the_same_limb_lands() {
     let pelvis = sim.spawn((ball(0.0, 3.0), GravityScale(0.0)));
     let limb = sim.spawn((ball(1.0, 0.0), ChildOf(pelvis)));
     sim.run(92);
-    let y = sim
-        .app
-        .world()
-        .get::<GlobalTransform>(limb)
-        .unwrap()
-        .translation()
-        .y;
+    let y = sim.global_y(limb);
     assert!(super::scene::rests(y), "the limb lands: y = {y}");
 }
 
@@ -102,5 +90,9 @@ fn without_the_hierarchy_the_parent_map_is_the_projects() {
     let limb = sim.spawn((ball(1.0, 0.0), ChildOf(pelvis)));
     sim.run(2);
     let l = body(&sim, limb);
-    assert_eq!(sim.rules().rules().parent(l), None, "ChildOf is not followed");
+    assert_eq!(
+        sim.rules().rules().parent(l),
+        None,
+        "ChildOf is not followed"
+    );
 }

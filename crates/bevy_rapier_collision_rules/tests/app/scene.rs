@@ -86,6 +86,12 @@ impl Sim {
         self.at(entity).y
     }
 
+    /// The height of an entity that may sit under another in the hierarchy.
+    pub fn global_y(&self, entity: Entity) -> f32 {
+        let global = self.app.world().get::<GlobalTransform>(entity).unwrap();
+        global.translation().y
+    }
+
     pub fn table(&mut self) -> Mut<'_, RuleTable> {
         self.app.world_mut().resource_mut::<RuleTable>()
     }

@@ -28,6 +28,8 @@
 use rapier_collision_rules::dim3 as rules;
 use rapier3d as rapier;
 
+#[path = "common/chart.rs"]
+mod chart;
 mod common;
 #[path = "common/space3.rs"]
 mod space;
@@ -405,24 +407,9 @@ fn chart(
         if points.is_empty() {
             continue;
         }
-        chart
-            .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))?
-            .label(label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color));
-        chart.draw_series(
-            points
-                .into_iter()
-                .map(|p| Circle::new(p, 3, color.filled())),
-        )?;
+        chart::line(&mut chart, &points, label, color)?;
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
-    root.present()?;
-    Ok(())
+    chart::finish(chart, &root)
 }
 
 criterion_group!(benches, worlds);

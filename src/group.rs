@@ -99,6 +99,17 @@ impl GroupTable {
         self.next_id
     }
 
+    /// `other`'s entries, with at least `count` groups (groups created
+    /// beyond `other`'s stay valid). Returns whether an entry changed.
+    pub(crate) fn copy_from(&mut self, other: &GroupTable, count: u32) -> bool {
+        let changed = self.entries != other.entries;
+        if changed {
+            self.entries.clone_from(&other.entries);
+        }
+        self.next_id = count.max(other.next_id);
+        changed
+    }
+
     pub(crate) fn get(&self, a: CollisionGroup, b: CollisionGroup) -> CollisionRule {
         if self.entries.is_empty() {
             return CollisionRule::Defer;
@@ -205,6 +216,24 @@ mod tests {
         table.set(b, a, Defer);
         assert_eq!(table.get(a, b), Defer);
         assert_eq!(table.iter().count(), 1, "only the built-in entry is left");
+    }
+
+    #[test]
+    fn a_copy_takes_the_entries_and_keeps_the_larger_count() {
+        let mut from = GroupTable::default();
+        let (a, b) = (from.create(), from.create());
+        from.set(a, b, NoPair);
+        let mut to = GroupTable::default();
+        for _ in 0..5 {
+            to.create();
+        }
+        assert!(to.copy_from(&from, to.group_count()), "an entry was added");
+        assert_eq!(to.get(b, a), NoPair);
+        assert_eq!(to.group_count(), 7, "groups created in the copy stay valid");
+        assert!(!to.copy_from(&from, to.group_count()), "the same entries again");
+        let mut fewer = GroupTable::default();
+        fewer.copy_from(&from, fewer.group_count());
+        assert_eq!(fewer.group_count(), from.group_count());
     }
 
     #[test]

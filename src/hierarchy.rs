@@ -124,4 +124,14 @@ impl Hierarchy {
         };
         bodies.contains(body).then_some(Node::Body(body))
     }
+
+    /// `start` and every node above it, leaf first.
+    pub(crate) fn chain<'a>(
+        &'a self,
+        bodies: &'a RigidBodySet,
+        colliders: &'a ColliderSet,
+        start: Node,
+    ) -> impl Iterator<Item = Node> + 'a {
+        std::iter::successors(Some(start), move |&node| self.next(bodies, colliders, node))
+    }
 }

@@ -332,8 +332,9 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
         .collect();
     // Specific entries Rapier's groups can decide take bits of their own;
     // the others are carried by a hooked side.
-    let entry_bits = EntryBits::plan(request, &classes, &settings, &personal, &hooked);
-    if entry_bits.room.is_some() && plan.room.is_none() {
+    let looked_up = plan.room.map(|(room, _)| room);
+    let entry_bits = EntryBits::plan(request, &classes, &settings, &personal, &hooked, looked_up);
+    if plan.room.is_none() {
         plan.room = entry_bits.room.map(|room| (room, colliders.len()));
     }
     plan.carriers = carriers(request, &mut hooked, &entry_bits.decided);
@@ -475,6 +476,7 @@ impl EntryBits {
         settings: &GroupSettings,
         personal: &HashMap<ColliderHandle, CollisionRule>,
         hooked: &HashSet<ColliderHandle>,
+        looked_up: Option<Room>,
     ) -> EntryBits {
         let Request {
             rules,
@@ -530,15 +532,9 @@ impl EntryBits {
             defaults.iter().all(|&g| g == all).then_some(dynamic)
         };
         let chains = |side: &[ColliderHandle]| -> HashSet<Node> {
-            let mut nodes = HashSet::new();
-            for &c in side {
-                let mut node = Some(Node::Collider(c));
-                while let Some(current) = node {
-                    nodes.insert(current);
-                    node = rules.hierarchy.next(bodies, colliders, current);
-                }
-            }
-            nodes
+            side.iter()
+                .flat_map(|&c| rules.hierarchy.chain(bodies, colliders, Node::Collider(c)))
+                .collect()
         };
         // Another entry from a node of `from` to a node of `to` than `entry`.
         let other_entry = |from: &HashSet<Node>, to: &HashSet<Node>, entry: (Node, Node)| {
@@ -588,8 +584,9 @@ impl EntryBits {
             let bit = match node_bits.get(&(owner, kind)) {
                 Some(&bit) => bit,
                 None => {
+                    // The groups' bits may have looked the room up already.
                     let room = *bits.room.get_or_insert_with(|| {
-                        Room::of_world(colliders, request.own)
+                        looked_up.unwrap_or_else(|| Room::of_world(colliders, request.own))
                     });
                     let free = free.get_or_insert(room.bits() - taken);
                     let Some(bit) = (0..32u32).find(|&b| free.contains(Group::from_bits_retain(1 << b)))
@@ -738,18 +735,12 @@ pub(crate) fn touches_entries(
     colliders: &ColliderSet,
     start: impl Into<Node>,
 ) -> bool {
-    let mut node = Some(start.into());
-    while let Some(current) = node {
-        if rules.is_named(current)
-            || rules
-                .record(current)
-                .is_some_and(|r| !r.specific.is_empty())
-        {
-            return true;
-        }
-        node = rules.hierarchy.next(bodies, colliders, current);
-    }
-    false
+    rules
+        .hierarchy
+        .chain(bodies, colliders, start.into())
+        .any(|node| {
+            rules.is_named(node) || rules.record(node).is_some_and(|r| !r.specific.is_empty())
+        })
 }
 
 /// The class of collider `leaf`, or `None` if its chain carries a personal

@@ -382,6 +382,37 @@ impl CollisionRuleSet {
     pub fn group_count(&self) -> u32 {
         self.groups.group_count()
     }
+
+    /// Makes this set's group table and default rule those of `from`, and
+    /// its groups at least `from`'s (a group created here beyond `from`'s
+    /// count stays valid, its table entries do not). Nodes, entries and
+    /// links are untouched. For one table shared by several worlds, each
+    /// with its own rule set: groups created in `from` then mean the same
+    /// in every copy. Nothing is logged when the table and the default rule
+    /// were already `from`'s, so copying every frame costs no replanning.
+    ///
+    /// ```
+    /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet};
+    ///
+    /// let mut table = CollisionRuleSet::default();
+    /// let (player, debris) = (table.create_group(), table.create_group());
+    /// table.set_group_rule(player, debris, CollisionRule::NoPair);
+    /// table.set_default_rule(CollisionRule::NoResponse);
+    ///
+    /// let mut world_rules = CollisionRuleSet::default();
+    /// world_rules.copy_group_table(&table);
+    /// assert_eq!(world_rules.group_rule(debris, player), CollisionRule::NoPair);
+    /// assert_eq!(world_rules.default_rule(), CollisionRule::NoResponse);
+    /// assert_eq!(world_rules.group_count(), table.group_count());
+    /// ```
+    pub fn copy_group_table(&mut self, from: &CollisionRuleSet) {
+        let count = self.groups.group_count();
+        let entries_changed = self.groups.copy_from(&from.groups, count);
+        if entries_changed || self.default_rule != from.default_rule {
+            self.default_rule = from.default_rule;
+            self.changes.everything();
+        }
+    }
 }
 
 impl CollisionRuleSet {

@@ -401,9 +401,12 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
     );
 
     let svg = view::render(&frames, LABELS);
-    std::fs::write(out.join(picture), svg)?;
+    std::fs::write(out.join(picture), &svg)?;
+    // The README's picture, the same each run: regenerated here.
+    let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+    std::fs::write(docs.join(format!("showcase_{picture}")), &svg)?;
     println!(
-        "side views at steps {SNAPSHOTS:?}: {}",
+        "side views at steps {SNAPSHOTS:?}: {} (and docs/showcase_{picture})",
         out.join(picture).display()
     );
     if failures > 0 {

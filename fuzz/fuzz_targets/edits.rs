@@ -6,11 +6,20 @@
 
 use libfuzzer_sys::fuzz_target;
 
-#[path = "../../tests/integration/world.rs"]
+/// The test files the target needs: the driver and its random worlds.
+macro_rules! dimension_free_tests {
+    () => {
+        #[path = "driver.rs"]
+        pub mod driver;
+        #[allow(dead_code)]
+        #[path = "world.rs"]
+        pub mod world;
+    };
+}
+
+// Mounted over rapier3d as the integration tests mount them.
 #[allow(dead_code)]
-mod world;
+#[path = "../../tests/integration/dim3.rs"]
+mod dim3;
 
-#[path = "../../tests/integration/driver.rs"]
-mod driver;
-
-fuzz_target!(|data: &[u8]| driver::drive(data));
+fuzz_target!(|data: &[u8]| dim3::driver::drive(data));

@@ -335,12 +335,52 @@ impl RuleHooks {
         bit: ActiveHooks,
     ) -> Option<&dyn PhysicsHooks> {
         let user = self.user.as_deref()?;
+        self.project_asks(colliders, a, b, bit)
+            .then_some(user as &dyn PhysicsHooks)
+    }
+
+    /// Whether the project's own hook bits (its `ActiveHooks`, as it set
+    /// them, without the bits the crate adds) on `a` or `b` ask for `bit`:
+    /// whether Rapier would call the project's hooks for this pair without
+    /// the rules. For project hooks that call the crate's answers
+    /// themselves instead of going through
+    /// [`set_user_hooks`](Self::set_user_hooks) (bevy_rapier's hooks are
+    /// one type per app): since the crate's bits make Rapier call the hooks
+    /// for more pairs, such hooks run their own logic only where this says
+    /// so.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed());
+    /// let floor = world.insert_collider(
+    ///     ColliderBuilder::cuboid(5.0, 0.5, 5.0).active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS),
+    ///     Some(ground),
+    /// );
+    /// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.0, 0.0)));
+    /// let g = world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific(ghost, floor, CollisionRule::NoContacts);
+    /// hooks.step(&mut world);
+    /// let asks = |bit| hooks.project_asks(&world.colliders, g, floor, bit);
+    /// assert!(asks(ActiveHooks::MODIFY_SOLVER_CONTACTS), "the floor's own bit");
+    /// assert!(!asks(ActiveHooks::FILTER_CONTACT_PAIRS), "the crate's bit on the ghost is not the project's");
+    /// ```
+    pub fn project_asks(
+        &self,
+        colliders: &ColliderSet,
+        a: ColliderHandle,
+        b: ColliderHandle,
+        bit: ActiveHooks,
+    ) -> bool {
         let asks = |c: ColliderHandle| {
             colliders
                 .get(c)
                 .is_some_and(|collider| self.own_settings(c, collider).hooks.contains(bit))
         };
-        (asks(a) || asks(b)).then_some(user as &dyn PhysicsHooks)
+        asks(a) || asks(b)
     }
 
     /// Replays the frozen contacts of a `ManifoldUpdate::Never` pair.

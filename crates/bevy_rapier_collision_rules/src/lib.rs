@@ -1,0 +1,74 @@
+//! Hierarchical collision rules for [bevy_rapier3d] users, as components:
+//! the rules of [`rapier_collision_rules`] (per-pair specific rules,
+//! personal rules and collision groups, from the most specific to the most
+//! general across compound hierarchies) with bevy_rapier's world, entities
+//! and hooks.
+//!
+//! - [`RuleGroup`], [`PersonalRule`] and [`SpecificRules`] on an entity
+//!   with a rigid body or a collider give it rules; changing or removing
+//!   them reaches live pairs before the next step (sleeping bodies are
+//!   woken), and a despawned entity leaves no rules behind.
+//! - [`RuleTable`], a resource, holds the group table and the default
+//!   rule; a physics context with a [`ContextRuleTable`] uses its own.
+//! - Bevy's hierarchy (`ChildOf`) between rigid bodies is the parent map:
+//!   a ragdoll's limbs under its pelvis, a vehicle's wheels under its
+//!   chassis.
+//! - [`CollisionRules`], on each physics context, holds its rules and
+//!   live pairs; [`CollisionRulesHooks`] is bevy_rapier's hooks.
+//!
+//! ```
+//! use bevy::prelude::*;
+//! use bevy_rapier3d::prelude::*;
+//! use bevy_rapier_collision_rules::prelude::*;
+//!
+//! let mut app = App::new();
+//! app.add_plugins((
+//!     MinimalPlugins,
+//!     TransformPlugin,
+//!     RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
+//!     CollisionRulesPlugin::default(),
+//! ));
+//! let (player, debris) = {
+//!     let mut table = app.world_mut().resource_mut::<RuleTable>();
+//!     (table.create_group(), table.create_group())
+//! };
+//! app.world_mut()
+//!     .resource_mut::<RuleTable>()
+//!     .set_group_rule(player, debris, CollisionRule::NoPair);
+//! app.world_mut().spawn((RigidBody::Dynamic, Collider::ball(0.5), RuleGroup(player)));
+//! app.world_mut().spawn((RigidBody::Dynamic, Collider::ball(0.2), RuleGroup(debris)));
+//! app.update();
+//! ```
+//!
+//! See `docs/bevy.md` for how the components map to the rules and which
+//! bevy_rapier settings the plugin combines with the project's.
+//!
+//! [bevy_rapier3d]: https://docs.rs/bevy_rapier3d
+
+mod components;
+mod edits;
+mod hierarchy;
+mod hooks;
+mod ledger;
+mod plugin;
+mod project;
+mod rules;
+mod step;
+mod table;
+
+pub use components::{PersonalRule, RuleGroup, SpecificRules};
+pub use hooks::CollisionRulesHooks;
+pub use plugin::{CollisionRulesPlugin, RulesSystems};
+pub use rules::CollisionRules;
+pub use table::{ContextRuleTable, RuleTable};
+
+/// The plugin, the components and the rules' own types.
+pub mod prelude {
+    pub use super::{
+        CollisionRules, CollisionRulesHooks, CollisionRulesPlugin, ContextRuleTable, PersonalRule,
+        RuleGroup, RuleTable, SpecificRules,
+    };
+    pub use rapier_collision_rules::{
+        CollisionGroup, CollisionRule, ManifoldUpdate, RecalculationPolicy,
+    };
+}

@@ -1,0 +1,188 @@
+//! The plugin: where its systems run around bevy_rapier's (`docs/bevy.md`).
+
+use bevy::ecs::intern::Interned;
+use bevy::ecs::schedule::ScheduleLabel;
+use bevy::prelude::*;
+use bevy_rapier3d::plugin::PhysicsSet;
+use bevy_rapier3d::plugin::context::RapierContextSimulation;
+use bevy_rapier3d::prelude::{
+    ActiveCollisionTypes, ActiveHooks, CollisionGroups, RapierRigidBodyHandle, SolverGroups,
+};
+
+use super::edits::apply_rule_components;
+use super::hierarchy::follow_hierarchy;
+use super::ledger::Ledger;
+use super::project::notice_project_settings;
+use super::step::{finish_contexts, prepare_contexts};
+use super::{CollisionRules, ContextRuleTable, PersonalRule, RuleGroup, RuleTable, SpecificRules};
+
+/// The plugin's systems.
+#[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum RulesSystems {
+    /// After bevy_rapier's `PhysicsSet::SyncBackend`: the table, the
+    /// hierarchy and the rule components reach each context's rules, which
+    /// prepare the world for the step.
+    Prepare,
+    /// After `PhysicsSet::StepSimulation`, before `PhysicsSet::Writeback`:
+    /// the rules take in the pairs of the step.
+    Finish,
+}
+
+/// Adds the collision rules to a bevy_rapier app. Add it beside
+/// `RapierPhysicsPlugin::<CollisionRulesHooks>` (or a project's own hooks
+/// that ask [`CollisionRulesHooks`](super::CollisionRulesHooks)), in the
+/// same schedule.
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_rapier3d::prelude::*;
+/// use bevy_rapier_collision_rules::prelude::*;
+///
+/// let mut app = App::new();
+/// app.add_plugins((
+///     MinimalPlugins,
+///     TransformPlugin,
+///     RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
+///     CollisionRulesPlugin::default(),
+/// ));
+/// let wall = app.world_mut().spawn((Transform::default(), Collider::cuboid(0.1, 2.0, 2.0))).id();
+/// app.world_mut().spawn((
+///     Transform::from_xyz(-1.0, 0.0, 0.0),
+///     RigidBody::Dynamic,
+///     Collider::ball(0.25),
+///     Velocity::linear(Vec3::X * 4.0),
+///     GravityScale(0.0),
+///     SpecificRules::new().with(wall, CollisionRule::NoResponse),
+/// ));
+/// app.update();
+/// ```
+pub struct CollisionRulesPlugin {
+    schedule: Interned<dyn ScheduleLabel>,
+    hierarchy: bool,
+}
+
+impl Default for CollisionRulesPlugin {
+    fn default() -> Self {
+        CollisionRulesPlugin {
+            schedule: PostUpdate.intern(),
+            hierarchy: true,
+        }
+    }
+}
+
+impl CollisionRulesPlugin {
+    /// Runs the systems in `schedule`: the one bevy_rapier steps in
+    /// (`RapierPhysicsPlugin::in_schedule`).
+    #[must_use]
+    pub fn in_schedule(mut self, schedule: impl ScheduleLabel) -> Self {
+        self.schedule = schedule.intern();
+        self
+    }
+
+    /// Runs the systems in `FixedUpdate`, as
+    /// `RapierPhysicsPlugin::in_fixed_schedule` does bevy_rapier's.
+    #[must_use]
+    pub fn in_fixed_schedule(self) -> Self {
+        self.in_schedule(FixedUpdate)
+    }
+
+    /// Leaves the parent map alone: Bevy's hierarchy (`ChildOf`) between
+    /// rigid bodies is not followed, and the project sets parents through
+    /// [`CollisionRules::hooks_mut`].
+    #[must_use]
+    pub fn without_hierarchy(mut self) -> Self {
+        self.hierarchy = false;
+        self
+    }
+}
+
+impl Plugin for CollisionRulesPlugin {
+    fn build(&self, app: &mut App) {
+        app.register_required_components::<RapierContextSimulation, CollisionRules>()
+            .init_resource::<RuleTable>()
+            .init_resource::<Ledger>();
+        app.configure_sets(
+            self.schedule,
+            (
+                RulesSystems::Prepare
+                    .after(PhysicsSet::SyncBackend)
+                    .before(PhysicsSet::StepSimulation),
+                RulesSystems::Finish
+                    .after(PhysicsSet::StepSimulation)
+                    .before(PhysicsSet::Writeback),
+            ),
+        );
+        // What the systems would otherwise find by scanning every body
+        // and child entity each frame, or could miss in a schedule that
+        // does not run every frame, is noted as it happens.
+        app.add_observer(note_rules_removed)
+            .add_observer(note_settings_removed);
+        if self.hierarchy {
+            app.add_observer(note_moved).add_observer(note_unparented);
+        }
+        let prepare = (
+            share_table,
+            follow_hierarchy,
+            apply_rule_components,
+            notice_project_settings,
+            prepare_contexts,
+        )
+            .chain()
+            .in_set(RulesSystems::Prepare);
+        app.add_systems(self.schedule, prepare);
+        app.add_systems(self.schedule, finish_contexts.in_set(RulesSystems::Finish));
+    }
+}
+
+/// A new parent, or a new body (made by bevy_rapier, also when an entity
+/// moves to another context).
+fn note_moved(event: On<Insert<(ChildOf, RapierRigidBodyHandle)>>, mut ledger: ResMut<Ledger>) {
+    ledger.moved.push(event.entity);
+}
+
+fn note_unparented(event: On<Remove<ChildOf>>, mut ledger: ResMut<Ledger>) {
+    ledger.moved.push(event.entity);
+}
+
+fn note_rules_removed(
+    event: On<Remove<(RuleGroup, PersonalRule, SpecificRules)>>,
+    mut ledger: ResMut<Ledger>,
+) {
+    ledger.removed.push(event.entity);
+}
+
+/// bevy_rapier writes Rapier's default when one of its settings
+/// components is removed.
+fn note_settings_removed(
+    event: On<
+        Remove<(
+            CollisionGroups,
+            SolverGroups,
+            ActiveCollisionTypes,
+            ActiveHooks,
+        )>,
+    >,
+    mut ledger: ResMut<Ledger>,
+) {
+    ledger.settings_removed.push(event.entity);
+}
+
+/// Copies the group table into each context's rules: the context's own
+/// [`ContextRuleTable`] if it has one, else the resource. Unchanged
+/// tables are not copied.
+fn share_table(
+    shared: Res<RuleTable>,
+    mut contexts: Query<(&mut CollisionRules, Option<Ref<ContextRuleTable>>)>,
+    mut dropped: RemovedComponents<ContextRuleTable>,
+) {
+    let dropped: Vec<Entity> = dropped.read().collect();
+    for (mut rules, own) in &mut contexts {
+        let (table, changed) = match &own {
+            Some(own) => (&own.0, own.is_changed()),
+            None => (&*shared, shared.is_changed()),
+        };
+        if changed || rules.is_added() || !dropped.is_empty() {
+            rules.rules_mut().copy_group_table(table.as_rule_set());
+        }
+    }
+}

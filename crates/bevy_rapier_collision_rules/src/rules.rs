@@ -1,0 +1,53 @@
+//! The rules of one physics context: a component on the context entity,
+//! beside bevy_rapier's own (`docs/bevy.md`).
+
+use bevy::prelude::*;
+use bevy_rapier3d::rapier::prelude::ColliderSet;
+use rapier_collision_rules::{CollisionRuleSet, RuleHooks};
+
+/// The rules of one physics context (one Rapier world): every entity's
+/// rules, the live pairs and their overrides. The plugin adds it to every
+/// entity with bevy_rapier's `RapierContextSimulation`, keeps it in step
+/// with the components, and steps the context's world with it.
+///
+/// Live-pair overrides, policies, a custom calculator or a pair-created
+/// callback go through [`hooks_mut`](Self::hooks_mut), with bevy_rapier's
+/// handles (`RapierColliderHandle`, `RapierRigidBodyHandle`).
+#[derive(Component, Default)]
+pub struct CollisionRules {
+    hooks: RuleHooks,
+    /// Where the context's `ColliderSet` was when it was last prepared:
+    /// the hook finds its context by the set Rapier hands it.
+    pub(crate) colliders_at: usize,
+}
+
+impl CollisionRules {
+    /// The hooks that hold this context's rules and live pairs.
+    #[must_use]
+    pub fn hooks(&self) -> &RuleHooks {
+        &self.hooks
+    }
+
+    /// The hooks, to set a policy, a calculator, a pair-created callback,
+    /// pair overrides or manifold settings. Rules that the components give
+    /// are theirs: an edit made here to the same nodes is replaced when the
+    /// component changes.
+    pub fn hooks_mut(&mut self) -> &mut RuleHooks {
+        &mut self.hooks
+    }
+
+    /// The context's rule set.
+    #[must_use]
+    pub fn rules(&self) -> &CollisionRuleSet {
+        self.hooks.rules()
+    }
+
+    pub(crate) fn rules_mut(&mut self) -> &mut CollisionRuleSet {
+        self.hooks.rules_mut()
+    }
+
+    /// Whether `colliders` is this context's collider set as last prepared.
+    pub(crate) fn owns(&self, colliders: &ColliderSet) -> bool {
+        self.colliders_at == std::ptr::from_ref(colliders) as usize
+    }
+}

@@ -1,0 +1,53 @@
+//! Around bevy_rapier's step: each context's rules prepare its world
+//! before the step and take in the pairs after it, however many Rapier
+//! steps bevy_rapier runs in between (substeps, catch-up steps)
+//! (`docs/bevy.md`).
+
+use bevy::prelude::*;
+use bevy_rapier3d::plugin::context::{
+    RapierContextColliders, RapierContextSimulation, RapierRigidBodySet,
+};
+
+use super::CollisionRules;
+
+/// Before the step: plans the colliders' flags and groups, recalculates
+/// the live pairs the edits reach, and wakes their bodies.
+pub(crate) fn prepare_contexts(
+    mut contexts: Query<(
+        &mut CollisionRules,
+        &mut RapierContextSimulation,
+        &mut RapierContextColliders,
+        &mut RapierRigidBodySet,
+    )>,
+) {
+    for (mut rules, mut simulation, mut colliders, mut bodies) in &mut contexts {
+        let rules = &mut *rules;
+        let simulation = simulation.bypass_change_detection();
+        let colliders = &mut colliders.bypass_change_detection().colliders;
+        let bodies = &mut bodies.bypass_change_detection().bodies;
+        rules.colliders_at = std::ptr::from_ref(colliders) as usize;
+        let hooks = rules.hooks_mut();
+        hooks.prepare(bodies, colliders);
+        hooks.freeze_manifolds(&simulation.narrow_phase);
+        hooks.wake_edited(&mut simulation.islands, bodies);
+    }
+}
+
+/// After the step: admits the pairs the hook met and forgets those Rapier
+/// no longer has.
+pub(crate) fn finish_contexts(
+    mut contexts: Query<(
+        &mut CollisionRules,
+        &RapierContextSimulation,
+        &RapierContextColliders,
+        &RapierRigidBodySet,
+    )>,
+) {
+    for (mut rules, simulation, colliders, bodies) in &mut contexts {
+        rules.hooks_mut().after_step(
+            &simulation.narrow_phase,
+            &bodies.bodies,
+            &colliders.colliders,
+        );
+    }
+}

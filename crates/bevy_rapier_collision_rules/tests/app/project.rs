@@ -1,0 +1,146 @@
+//! The project's own bevy_rapier settings and hooks keep working beside
+//! the rules.
+
+use CollisionRule::*;
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
+use bevy_rapier_collision_rules::prelude::*;
+use bevy_rapier3d::prelude::*;
+use bevy_rapier3d::rapier::prelude::ActiveHooks as RapierHooks;
+
+use super::scene::{Sim, ball, fell_through, floor, rests};
+
+/// The floor's membership in the project's own collision groups.
+const FLOOR: Group = Group::GROUP_2;
+
+#[test]
+fn the_projects_collision_groups_still_filter_where_the_rules_wrote_groups() {
+    let mut sim = Sim::new();
+    let (ghosts, debris) = {
+        let mut table = sim.table();
+        (table.create_group(), table.create_group())
+    };
+    sim.table().set_group_rule(ghosts, debris, NoPair);
+    let f = sim.spawn((floor(), CollisionGroups::new(FLOOR, Group::ALL)));
+    // The project's groups keep this ball off the floor; the rules give it
+    // collision groups of their own too.
+    let kept_off = sim.spawn((
+        ball(0.0, 1.0),
+        RuleGroup(ghosts),
+        CollisionGroups::new(Group::GROUP_1, Group::ALL - FLOOR),
+    ));
+    let lands = sim.spawn((ball(1.0, 1.0), RuleGroup(ghosts)));
+    let crumb = sim.spawn((ball(1.0, 3.0), RuleGroup(debris)));
+    sim.run(120);
+    let groups = sim.collider(kept_off, |c| c.collision_groups());
+    assert!(
+        fell_through(sim.y(kept_off)),
+        "the project's filter holds: y = {}, groups {groups:?}",
+        sim.y(kept_off)
+    );
+    assert!(rests(sim.y(lands)), "y = {}", sim.y(lands));
+    assert!(
+        rests(sim.y(crumb)),
+        "debris passes the ghost, lands: y = {}",
+        sim.y(crumb)
+    );
+    let _ = f;
+
+    // The project changes its groups at runtime: bevy_rapier writes them,
+    // the rules combine with them again.
+    let late = sim.spawn((
+        ball(-2.0, 0.3),
+        RuleGroup(ghosts),
+        CollisionGroups::default(),
+    ));
+    sim.run(60);
+    assert!(rests(sim.y(late)), "y = {}", sim.y(late));
+    sim.app
+        .world_mut()
+        .get_mut::<CollisionGroups>(late)
+        .unwrap()
+        .filters = Group::ALL - FLOOR;
+    let crumb2 = sim.spawn((ball(-2.0, 2.0), RuleGroup(debris)));
+    sim.run(90);
+    assert!(
+        fell_through(sim.y(late)),
+        "the project's new filter holds: y = {}",
+        sim.y(late)
+    );
+    assert!(
+        rests(sim.y(crumb2)),
+        "and the rules' NoPair still does: y = {}",
+        sim.y(crumb2)
+    );
+}
+
+/// A project's own marker, which its hooks read.
+#[derive(Component)]
+struct Intangible;
+
+#[derive(SystemParam)]
+struct GameHooks<'w, 's> {
+    rules: CollisionRulesHooks<'w, 's>,
+    intangible: Query<'w, 's, &'static Intangible>,
+}
+
+impl BevyPhysicsHooks for GameHooks<'_, '_> {
+    fn filter_contact_pair(&self, context: PairFilterContextView) -> Option<SolverFlags> {
+        let flags = self.rules.filter_contact_pair(&context)?;
+        let asked = self
+            .rules
+            .project_asks(&context, RapierHooks::FILTER_CONTACT_PAIRS);
+        let intangible = |e| self.intangible.contains(e);
+        if asked && (intangible(context.collider1()) || intangible(context.collider2())) {
+            return None;
+        }
+        Some(flags)
+    }
+
+    fn filter_intersection_pair(&self, context: PairFilterContextView) -> bool {
+        self.rules.filter_intersection_pair(&context)
+    }
+
+    fn modify_solver_contacts(&self, mut context: ContactModificationContextView) {
+        self.rules.modify_solver_contacts(&mut context);
+    }
+}
+
+#[test]
+fn a_projects_own_hooks_keep_working_and_see_only_what_they_asked_for() {
+    let mut sim = Sim::with_hooks::<GameHooks>();
+    let f = sim.spawn(floor());
+    let far = sim.spawn((Transform::from_xyz(0.0, 20.0, 0.0), Collider::ball(0.1)));
+    // The project's hook, asked for by its own bit.
+    let phantom = sim.spawn((
+        ball(0.0, 1.0),
+        Intangible,
+        ActiveHooks::FILTER_CONTACT_PAIRS,
+    ));
+    // The rules' hook on a ball of the project's marker, without its bit:
+    // the project's logic is not asked, as without the rules.
+    let marked = sim.spawn((
+        ball(1.0, 1.0),
+        Intangible,
+        SpecificRules::new().with(far, NoContacts),
+    ));
+    // The rules alone.
+    let ghost = sim.spawn((ball(2.0, 1.0), SpecificRules::new().with(f, NoContacts)));
+    sim.run(120);
+    assert!(
+        fell_through(sim.y(phantom)),
+        "the project's hook: y = {}",
+        sim.y(phantom)
+    );
+    assert!(rests(sim.y(marked)), "not asked: y = {}", sim.y(marked));
+    assert!(
+        fell_through(sim.y(ghost)),
+        "the rules: y = {}",
+        sim.y(ghost)
+    );
+    assert!(
+        sim.rules().hooks().stats().hooked_colliders >= 2,
+        "{:?}",
+        sim.rules().hooks().stats()
+    );
+}

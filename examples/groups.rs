@@ -4,6 +4,7 @@
 //!
 //! `cargo run --example groups`
 
+use approx::abs_diff_eq;
 use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks};
 use rapier3d::prelude::*;
 
@@ -90,7 +91,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         world.bodies[rock].translation().y,
     );
     println!("after 2 s: the player stands at y = {py:.2}, the rock lies at y = {ry:.2}");
-    if (py - 1.0).abs() > 0.05 || (ry - 0.2).abs() > 0.05 {
+    if !abs_diff_eq!(py, 1.0, epsilon = 0.05) || !abs_diff_eq!(ry, 0.2, epsilon = 0.05) {
         return Err("the debris did not fall through the player onto the ground".into());
     }
     println!(

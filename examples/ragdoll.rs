@@ -5,6 +5,7 @@
 //!
 //! `cargo run --example ragdoll`
 
+use approx::abs_diff_eq;
 use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks, Stage};
 use rapier3d::prelude::*;
 
@@ -68,7 +69,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "{name:>12}: landed at ({:+.2}, {:.2}), pair with the floor {on_floor:?}",
             p.x, p.y
         );
-        if (p.y - 0.15).abs() > 0.05 || on_floor != Some(CollisionRule::Normal) {
+        if !abs_diff_eq!(p.y, 0.15, epsilon = 0.05) || on_floor != Some(CollisionRule::Normal) {
             return Err(format!("{name} did not land on the floor").into());
         }
     }

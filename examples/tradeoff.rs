@@ -29,6 +29,7 @@
 //!
 //! `cargo run --release --example tradeoff` (about ten seconds on 2 cores)
 
+use approx::abs_diff_eq;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -505,7 +506,7 @@ fn check(name: &str, measured: &Measured) -> Result<(), String> {
         (Method::AllHooked, Method::NoRecycling),
     ] {
         for (p, q) in curve(a).iter().zip(curve(b)) {
-            if (p.error - q.error).abs() > measured.tolerance {
+            if !abs_diff_eq!(p.error, q.error, epsilon = measured.tolerance) {
                 return Err(format!(
                     "{name} at 1/{} s: {a:?} error {:.3e} m against {b:?} {:.3e} m (tolerance {:.1e} m)",
                     p.hz, p.error, q.error, measured.tolerance

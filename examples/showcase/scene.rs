@@ -2,6 +2,7 @@
 //! work, stepped for three seconds, with one row per actor and side views
 //! (see `main.rs` of `showcase` and `showcase2d`).
 
+use approx::abs_diff_eq;
 use std::collections::HashMap;
 use std::sync::mpsc::{Receiver, channel};
 
@@ -315,7 +316,9 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
                 limb_ys[0], limb_ys[1], limb_ys[2]
             ),
             limbs_apart
-                && limb_ys.iter().all(|y| (y - 0.25).abs() < 0.05)
+                && limb_ys
+                    .iter()
+                    .all(|&y| abs_diff_eq!(y, 0.25, epsilon = 0.05))
                 && hooks
                     .pair_rule_in(&world, actors[0].colliders[2], floor)
                     .is_some(),
@@ -325,7 +328,7 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
                 "chassis rides at y = {:.2} over its wheels",
                 pos(h.chassis).y
             ),
-            (pos(h.chassis).y - 1.0).abs() < 0.1,
+            abs_diff_eq!(pos(h.chassis).y, 1.0, epsilon = 0.1),
         ),
         (
             format!("walked through the wall to x = {:.2}", pos(h.ghost).x),
@@ -346,7 +349,7 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
         ),
         (
             format!("stands at y = {:.2}", pos(h.player).y),
-            (pos(h.player).y - 1.0).abs() < 0.05,
+            abs_diff_eq!(pos(h.player).y, 1.0, epsilon = 0.05),
         ),
         (
             format!(
@@ -354,8 +357,8 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
                 pos(h.platforms.0).x,
                 pos(h.platforms.1).x
             ),
-            (pos(h.platforms.0).x - (start.0 + t)).abs() < 1e-3
-                && (pos(h.platforms.1).x - (start.1 - t)).abs() < 1e-3
+            abs_diff_eq!(pos(h.platforms.0).x, (start.0 + t), epsilon = 1e-3)
+                && abs_diff_eq!(pos(h.platforms.1).x, (start.1 - t), epsilon = 1e-3)
                 && seen[6].live.is_none(),
         ),
         (
@@ -364,7 +367,7 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
                 pos(h.bullets.0).x,
                 free_bullet
             ),
-            (pos(h.bullets.0).x - free_bullet).abs() < 1e-3,
+            abs_diff_eq!(pos(h.bullets.0).x, free_bullet, epsilon = 1e-3),
         ),
         (
             format!("stopped at x = {:.2}", pos(h.bullets.1).x),

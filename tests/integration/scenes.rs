@@ -2,6 +2,7 @@
 //! to bodies, contacts, events, live pairs and the CCD. Every assertion
 //! prints the measured value.
 
+use approx::abs_diff_eq;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{Receiver, channel};
@@ -160,7 +161,7 @@ fn each_rule_does_to_a_resting_cube_what_it_promises() {
     ];
     for (rule, stays, touches, events, live) in table {
         let o = resting_cube(rule);
-        let stayed = (o.y - 0.5).abs() < 0.05;
+        let stayed = abs_diff_eq!(o.y, 0.5, epsilon = 0.05);
         assert!(
             stays == stayed && (stays || o.y < -3.0),
             "{rule:?}: cube at y = {}: {o:?}",
@@ -211,7 +212,7 @@ fn sensors_follow_the_rule() {
             events.stopped
         );
         assert!(
-            (scene.y(body) - 0.5).abs() < 0.05,
+            abs_diff_eq!(scene.y(body), 0.5, epsilon = 0.05),
             "{rule:?}: cube did not land: y = {}",
             scene.y(body)
         );
@@ -309,7 +310,7 @@ fn two_kinematic_bodies_with_a_normal_group_rule_touch_without_pushing() {
     );
     assert!(touched, "the platforms never had contacts");
     assert!(
-        (xa - 0.5).abs() < 1e-4 && (xb - 1.0).abs() < 1e-4,
+        abs_diff_eq!(xa, 0.5, epsilon = 1e-4) && abs_diff_eq!(xb, 1.0, epsilon = 1e-4),
         "a platform was pushed: {xa} {xb}"
     );
     assert_eq!(hooks.pair_rule_in(&world, ca, cb), Some(NoResponse));
@@ -385,7 +386,7 @@ fn manual_waits_for_force_recalculation() {
     run(&mut scene, &mut hooks, 60);
     assert_eq!(hooks.pair_rule(cube, scene.floor), Some(Normal));
     assert!(
-        (scene.y(body) - 0.5).abs() < 0.05,
+        abs_diff_eq!(scene.y(body), 0.5, epsilon = 0.05),
         "the edit applied without a recalculation: y = {}",
         scene.y(body)
     );
@@ -433,7 +434,7 @@ fn every_step_follows_a_calculator_reading_outside_state() {
     open.store(true, Ordering::Relaxed);
     run(&mut scene, &mut hooks, 60);
     assert!(
-        (resting - 0.5).abs() < 0.05 && scene.y(body) < -3.0,
+        abs_diff_eq!(resting, 0.5, epsilon = 0.05) && scene.y(body) < -3.0,
         "rested at {resting}, ended at {}",
         scene.y(body)
     );
@@ -600,7 +601,7 @@ fn never_keeps_the_contacts_of_the_moment_it_was_set() {
     assert!(hooks.set_manifold_update_in(&scene.world, cube, scene.floor, ManifoldUpdate::Never));
     run(&mut scene, &mut hooks, 60);
     assert!(
-        (scene.y(body) - 0.5).abs() < 0.05,
+        abs_diff_eq!(scene.y(body), 0.5, epsilon = 0.05),
         "the frozen contacts did not hold: y = {}",
         scene.y(body)
     );
@@ -646,7 +647,7 @@ fn removal_through_rapier_is_noticed_and_reused_handles_start_clean() {
     );
 
     assert!(
-        (scene.y(new_body) - 0.5).abs() < 0.05,
+        abs_diff_eq!(scene.y(new_body), 0.5, epsilon = 0.05),
         "y = {}",
         scene.y(new_body)
     );
@@ -670,7 +671,7 @@ fn a_ragdoll_ignores_itself_and_lands_on_the_world() -> Result<(), RuleError> {
     for (limb, x0) in [(pelvis, 0.0), (thigh, 0.3), (shin, 0.6)] {
         let (x, y) = (scene.x(limb), scene.y(limb));
         assert!(
-            (x - x0).abs() < 0.02 && (y - 0.5).abs() < 0.05,
+            abs_diff_eq!(x, x0, epsilon = 0.02) && abs_diff_eq!(y, 0.5, epsilon = 0.05),
             "limb landed at ({x}, {y})"
         );
     }
@@ -943,7 +944,7 @@ fn a_colliderless_parent_changing_type_updates_its_descendants_pairs() -> Result
         "the pair did not follow the parent's type"
     );
     assert!(
-        (y - 0.6).abs() < 0.05,
+        abs_diff_eq!(y, 0.6, epsilon = 0.05),
         "the cube did not land on the platform: y = {y}"
     );
     Ok(())

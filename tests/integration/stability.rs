@@ -3,6 +3,7 @@
 //! `Normal`, a stack that ghosts pass through, and a heavy compound with
 //! group rules.
 
+use approx::abs_diff_eq;
 use rapier_collision_rules::{
     CollisionGroup, CollisionRule, CollisionRuleSet, RuleError, RuleHooks,
 };
@@ -220,7 +221,7 @@ fn a_heavy_compound_with_group_rules_rests() -> Result<(), RuleError> {
     );
     assert!(ratio > 90.0, "mass ratio {ratio}");
     assert!(
-        (hy - 0.5).abs() < 0.02 && (my - 1.4).abs() < 0.05,
+        abs_diff_eq!(hy, 0.5, epsilon = 0.02) && abs_diff_eq!(my, 1.4, epsilon = 0.05),
         "did not rest: hull {hy}, mast {my}"
     );
     assert!(peak < 0.05, "the compound jitters: {peak} m/s");

@@ -174,10 +174,11 @@ fn edit(c: &mut Criterion) {
 
 /// Paired ratios: each variant's two worlds stepped alternately, 3 runs of
 /// 100 step pairs, each step timed back to back with its twin at the same
-/// point of the evolution; prints the median of the runs' ratios. Less
-/// exposed to the machine drifting between two criterion benchmarks.
+/// point of the evolution; prints the median of the runs' ratios and their
+/// range. Less exposed to the machine drifting between two criterion
+/// benchmarks.
 fn paired() {
-    println!("paired ratios (rules / plain, median of 3 runs of 100 step pairs):");
+    println!("paired ratios (rules / plain, median [min-max] of 3 runs of 100 step pairs):");
     for n in [1000, 4000] {
         for &variant in VARIANTS {
             // STEP_VARIANTS=none,groups limits the paired runs to those variants.
@@ -201,7 +202,10 @@ fn paired() {
             } else {
                 "  (the twins differ)"
             };
-            println!("  {variant:>15} {n:>5}: {:.3}{differ}", ratios[1]);
+            println!(
+                "  {variant:>15} {n:>5}: {:.3} [{:.3}-{:.3}]{differ}",
+                ratios[1], ratios[0], ratios[2]
+            );
         }
     }
 }

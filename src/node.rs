@@ -16,7 +16,7 @@ use super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
 /// let body = bodies.insert(RigidBodyBuilder::dynamic());
 /// assert_eq!(Node::from(body), Node::Body(body));
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Node {
     /// A collider: a leaf of every chain.
@@ -28,6 +28,7 @@ pub enum Node {
 impl Node {
     /// The node's kind and Rapier slot index: two nodes of one slot are
     /// generations of it.
+    #[inline]
     pub(crate) fn slot(self) -> (bool, u32) {
         match self {
             Node::Collider(handle) => (false, handle.raw_parts().0),
@@ -35,11 +36,25 @@ impl Node {
         }
     }
 
+    #[inline]
     pub(crate) fn generation(self) -> u32 {
         match self {
             Node::Collider(handle) => handle.raw_parts().1,
             Node::Body(handle) => handle.raw_parts().1,
         }
+    }
+}
+
+/// One word per node: the specific stage hashes nodes in its inner loop,
+/// and the derived hash (the kind, then the handle's two fields, through a
+/// call the compiler stopped inlining) made that stage twice as slow
+/// (`docs/performance.md`, `resolve`). Equal nodes give equal words.
+impl std::hash::Hash for Node {
+    #[inline]
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        let ((body, index), generation) = (self.slot(), self.generation());
+        let word = (u64::from(generation) << 32 | u64::from(index)) ^ (u64::from(body) << 63);
+        state.write_u64(word);
     }
 }
 

@@ -28,6 +28,10 @@ use rapier3d::prelude::*;
 
 #[path = "../benches/common/chart.rs"]
 mod chart;
+#[path = "common/overlap.rs"]
+mod overlap;
+
+use overlap::{Overlap, overlapping_cubes};
 
 type Failure = Box<dyn std::error::Error>;
 
@@ -271,18 +275,11 @@ enum Switch {
 /// `depth` (a share of their width), over two seconds, from their poses
 /// step to step.
 fn overlap(depth: f32, switch: Switch) -> f32 {
-    let mut world = PhysicsWorld::new();
-    let ground =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-    world.insert_collider(ColliderBuilder::cuboid(20.0, 0.5, 20.0), Some(ground));
-    let a = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.5, 0.0)));
-    let b = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(
-        1.0 - depth,
-        0.5,
-        0.0,
-    )));
-    let ca = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(a));
-    let cb = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(b));
+    let Overlap {
+        mut world,
+        bodies: (a, b),
+        colliders: (ca, cb),
+    } = overlapping_cubes(depth);
     let mut rules = CollisionRuleSet::default();
     if switch != Switch::Plain {
         rules.set_specific(a, b, CollisionRule::NoResponse);

@@ -9,23 +9,21 @@ use rapier_collision_rules::{
 };
 use rapier3d::prelude::*;
 
+#[path = "../../examples/common/overlap.rs"]
+mod overlap;
+
+use overlap::{Overlap, overlapping_cubes};
+
 /// Two unit cubes overlapping by `depth` on a ground slab, `NoResponse`
 /// between them, switched to `Normal` after one step; returns the peak
 /// separation speed over the next second. With `gentle`, the switch goes
 /// through `NoContacts` until the two no longer overlap.
 fn overlap_switch(depth: f32, gentle: bool) -> f32 {
-    let mut world = PhysicsWorld::new();
-    let ground =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-    world.insert_collider(ColliderBuilder::cuboid(20.0, 0.5, 20.0), Some(ground));
-    let a = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.5, 0.0)));
-    let b = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(
-        1.0 - depth,
-        0.5,
-        0.0,
-    )));
-    let ca = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(a));
-    let cb = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(b));
+    let Overlap {
+        mut world,
+        bodies: (a, b),
+        colliders: (ca, cb),
+    } = overlapping_cubes(depth);
     let mut rules = CollisionRuleSet::default();
     rules.set_specific(a, b, CollisionRule::NoResponse);
     let mut hooks = RuleHooks::new(rules);

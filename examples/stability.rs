@@ -23,7 +23,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use plotters::prelude::*;
-use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks};
+use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
 use rapier3d::prelude::*;
 
 #[path = "../benches/common/chart.rs"]
@@ -31,7 +31,11 @@ mod chart;
 #[path = "common/overlap.rs"]
 mod overlap;
 
+#[path = "common/stack.rs"]
+mod stack;
+
 use overlap::{Overlap, overlapping_cubes};
+use stack::{GhostStack, ghost_stack};
 
 type Failure = Box<dyn std::error::Error>;
 
@@ -383,46 +387,20 @@ const STEPS_PER_SECOND: [f32; 7] = [15.0, 20.0, 30.0, 45.0, 60.0, 120.0, 240.0];
 /// everything), stepped for three seconds at `1 / hz`; returns the stack's
 /// largest horizontal drift.
 fn stack(hz: f32, method: Method) -> f32 {
-    let mut world = PhysicsWorld::new();
-    world.integration_parameters.dt = 1.0 / hz;
-    let ground =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-    let floor = world.insert_collider(ColliderBuilder::cuboid(20.0, 0.5, 20.0), Some(ground));
-    let boxes: Vec<_> = (0..20)
-        .map(|i| {
-            let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(
-                0.0,
-                0.5 + i as f32,
-                0.0,
-            )));
-            (
-                body,
-                world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body)),
-            )
-        })
-        .collect();
-    let mut rules = CollisionRuleSet::default();
-    let spirits = rules.create_group();
-    for g in [
-        CollisionGroup::DEFAULT_DYNAMIC,
-        CollisionGroup::DEFAULT_KINEMATIC,
-    ] {
-        rules.set_group_rule(spirits, g, CollisionRule::NoResponse);
-    }
-    let mut ghosts = Vec::new();
-    for i in 0..5 {
-        let ghost = world.insert_body(
-            RigidBodyBuilder::dynamic()
-                .translation(Vector::new(0.2, 25.0 + 3.0 * i as f32, 0.1))
-                .gravity_scale(0.0)
-                .linvel(Vector::new(0.0, -8.0, 0.0)),
-        );
-        ghosts.push(world.insert_collider(ColliderBuilder::ball(0.6), Some(ghost)));
+    let GhostStack {
+        world,
+        boxes,
+        floor,
+        ghosts,
+        mut rules,
+        spirits,
+    } = ghost_stack(1.0 / hz, true);
+    for &(ghost, _) in &ghosts {
         rules.set_group(ghost, Some(spirits));
     }
     let mut run = Run::new(world, method, rules);
     if run.plain() {
-        for &g in &ghosts {
+        for &(_, g) in &ghosts {
             for c in boxes.iter().map(|b| b.1).chain([floor]) {
                 plain_rule(&mut run, g, c, CollisionRule::NoResponse);
             }

@@ -4,15 +4,19 @@
 //! group rules.
 
 use approx::abs_diff_eq;
-use rapier_collision_rules::{
-    CollisionGroup, CollisionRule, CollisionRuleSet, RuleError, RuleHooks,
-};
+use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleError, RuleHooks};
 use rapier3d::prelude::*;
 
 #[path = "../../examples/common/overlap.rs"]
 mod overlap;
 
+// The floor is the stability example's, which gives plain Rapier its groups.
+#[allow(dead_code)]
+#[path = "../../examples/common/stack.rs"]
+mod stack;
+
 use overlap::{Overlap, overlapping_cubes};
+use stack::{GhostStack, ghost_stack};
 
 /// Two unit cubes overlapping by `depth` on a ground slab, `NoResponse`
 /// between them, switched to `Normal` after one step; returns the peak
@@ -84,48 +88,24 @@ enum Ghosts {
 /// A 20-box stack, with five ghosts falling through it; returns the stack's
 /// largest horizontal drift after 3 s.
 fn stack_drift(ghosts: Ghosts) -> f32 {
-    let mut world = PhysicsWorld::new();
-    let ground =
-        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
-    world.insert_collider(ColliderBuilder::cuboid(20.0, 0.5, 20.0), Some(ground));
-    let stack: Vec<_> = (0..20)
-        .map(|i| {
-            let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(
-                0.0,
-                0.5 + i as f32,
-                0.0,
-            )));
-            world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
-            body
-        })
-        .collect();
-    let mut rules = CollisionRuleSet::default();
-    let spirits = rules.create_group();
-    for g in [
-        CollisionGroup::DEFAULT_DYNAMIC,
-        CollisionGroup::DEFAULT_KINEMATIC,
-    ] {
-        rules.set_group_rule(spirits, g, CollisionRule::NoResponse);
-    }
-    if ghosts != Ghosts::None {
-        for i in 0..5 {
-            let ghost = world.insert_body(
-                RigidBodyBuilder::dynamic()
-                    .translation(Vector::new(0.2, 25.0 + 3.0 * i as f32, 0.1))
-                    .gravity_scale(0.0)
-                    .linvel(Vector::new(0.0, -8.0, 0.0)),
-            );
-            let shape = world.insert_collider(ColliderBuilder::ball(0.6), Some(ghost));
-            match ghosts {
-                Ghosts::RapierSolverGroups => {
-                    let bit = Group::from_bits_retain(2);
-                    let groups = InteractionGroups::new(bit, Group::NONE, InteractionTestMode::And);
-                    world.colliders[shape].set_solver_groups(groups);
-                }
-                Ghosts::GroupRule => rules.set_group(ghost, Some(spirits)),
-                Ghosts::Personal => rules.set_personal(ghost, CollisionRule::NoResponse),
-                Ghosts::None => {}
+    let GhostStack {
+        mut world,
+        boxes,
+        ghosts: made,
+        mut rules,
+        spirits,
+        ..
+    } = ghost_stack(IntegrationParameters::default().dt, ghosts != Ghosts::None);
+    for &(ghost, shape) in &made {
+        match ghosts {
+            Ghosts::RapierSolverGroups => {
+                let bit = Group::from_bits_retain(2);
+                let groups = InteractionGroups::new(bit, Group::NONE, InteractionTestMode::And);
+                world.colliders[shape].set_solver_groups(groups);
             }
+            Ghosts::GroupRule => rules.set_group(ghost, Some(spirits)),
+            Ghosts::Personal => rules.set_personal(ghost, CollisionRule::NoResponse),
+            Ghosts::None => {}
         }
     }
     let mut hooks = RuleHooks::new(rules);
@@ -136,9 +116,9 @@ fn stack_drift(ghosts: Ghosts) -> f32 {
             hooks.step(&mut world);
         }
     }
-    stack
+    boxes
         .iter()
-        .map(|&b| {
+        .map(|&(b, _)| {
             let p = world.bodies[b].translation();
             (p.x * p.x + p.z * p.z).sqrt()
         })

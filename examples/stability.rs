@@ -34,7 +34,7 @@ mod overlap;
 #[path = "common/stack.rs"]
 mod stack;
 
-use overlap::{Overlap, overlapping_cubes};
+use overlap::{Switch, overlap};
 use stack::{GhostStack, ghost_stack};
 
 type Failure = Box<dyn std::error::Error>;
@@ -263,59 +263,6 @@ fn bullets() -> Vec<BulletRow> {
 // ---------------------------------------------------------------- overlap
 
 const DEPTHS: [f32; 11] = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0];
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Switch {
-    /// Plain Rapier: the two cubes made overlapping, no rules.
-    Plain,
-    /// `NoResponse`, switched to `Normal` after one step.
-    Abrupt,
-    /// `NoResponse` while they touch, separated by hand 1 cm a step, then
-    /// `Normal`.
-    Staged,
-}
-
-/// The peak separation speed of two unit cubes on a floor overlapping by
-/// `depth` (a share of their width), over two seconds, from their poses
-/// step to step.
-fn overlap(depth: f32, switch: Switch) -> f32 {
-    let Overlap {
-        mut world,
-        bodies: (a, b),
-        colliders: (ca, cb),
-    } = overlapping_cubes(depth);
-    let mut rules = CollisionRuleSet::default();
-    if switch != Switch::Plain {
-        rules.set_specific(a, b, CollisionRule::NoResponse);
-    }
-    let mut hooks = RuleHooks::new(rules);
-    hooks.step(&mut world);
-    if switch == Switch::Abrupt {
-        hooks.rules_mut().set_specific(a, b, CollisionRule::Normal);
-    }
-    let dt = world.integration_parameters.dt;
-    let gap = |world: &PhysicsWorld| world.bodies[b].translation() - world.bodies[a].translation();
-    let mut peak: f32 = 0.0;
-    for _ in 0..120 {
-        let before = gap(&world);
-        if switch == Switch::Staged {
-            let touching = world
-                .narrow_phase
-                .contact_pair(ca, cb)
-                .is_some_and(|p| p.has_any_active_contact());
-            if touching {
-                let pa = world.bodies[a].translation();
-                world.bodies[a].set_translation(pa - Vector::new(0.01, 0.0, 0.0), true);
-            } else {
-                hooks.rules_mut().set_specific(a, b, CollisionRule::Normal);
-            }
-        }
-        hooks.step(&mut world);
-        // From the poses, so that the hand's separation counts too.
-        peak = peak.max((gap(&world) - before).length() / dt);
-    }
-    peak
-}
 
 // ---------------------------------------------------------------- mass
 

@@ -15,56 +15,13 @@ mod overlap;
 #[path = "../../examples/common/stack.rs"]
 mod stack;
 
-use overlap::{Overlap, overlapping_cubes};
+use overlap::{Switch, overlap};
 use stack::{GhostStack, ghost_stack};
-
-/// Two unit cubes overlapping by `depth` on a ground slab, `NoResponse`
-/// between them, switched to `Normal` after one step; returns the peak
-/// separation speed over the next second. With `gentle`, the switch goes
-/// through `NoContacts` until the two no longer overlap.
-fn overlap_switch(depth: f32, gentle: bool) -> f32 {
-    let Overlap {
-        mut world,
-        bodies: (a, b),
-        colliders: (ca, cb),
-    } = overlapping_cubes(depth);
-    let mut rules = CollisionRuleSet::default();
-    rules.set_specific(a, b, CollisionRule::NoResponse);
-    let mut hooks = RuleHooks::new(rules);
-    hooks.step(&mut world);
-    hooks.rules_mut().set_specific(a, b, CollisionRule::Normal);
-    let mut peak: f32 = 0.0;
-    for _ in 0..60 {
-        hooks.step(&mut world);
-        if gentle {
-            // Let the solver push them apart only as fast as gravity-free
-            // contact softness allows: keep them pairless until apart.
-            let apart = !world
-                .narrow_phase
-                .contact_pair(ca, cb)
-                .is_some_and(|p| p.has_any_active_contact());
-            let rule = if apart {
-                CollisionRule::Normal
-            } else {
-                CollisionRule::NoResponse
-            };
-            hooks.rules_mut().set_specific(a, b, rule);
-            if !apart {
-                // Separate them by hand, 1 cm a step, as a game would.
-                let pa = world.bodies[a].translation();
-                world.bodies[a].set_translation(pa - Vector::new(0.01, 0.0, 0.0), true);
-            }
-        }
-        let relative = world.bodies[b].linvel() - world.bodies[a].linvel();
-        peak = peak.max(relative.length());
-    }
-    peak
-}
 
 #[test]
 fn switching_a_deep_overlap_to_normal_separates_and_a_staged_switch_is_gentle() {
-    let abrupt = overlap_switch(0.5, false);
-    let gentle = overlap_switch(0.5, true);
+    let abrupt = overlap(0.5, Switch::Abrupt);
+    let gentle = overlap(0.5, Switch::Staged);
     println!("peak separation speed: abrupt {abrupt:.2} m/s, staged {gentle:.2} m/s");
     assert!(abrupt > 0.1, "the overlap did not push apart: {abrupt} m/s");
     assert!(

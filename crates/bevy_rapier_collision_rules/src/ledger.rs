@@ -44,6 +44,8 @@ pub(crate) struct Ledger {
     pub(crate) moved: Vec<Entity>,
     /// Colliders that lost one of bevy_rapier's settings components.
     pub(crate) settings_removed: Vec<Entity>,
+    /// Contexts that dropped their own table.
+    pub(crate) table_dropped: Vec<Entity>,
 }
 
 impl Ledger {

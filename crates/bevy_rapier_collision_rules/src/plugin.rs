@@ -116,7 +116,8 @@ impl Plugin for CollisionRulesPlugin {
         // and child entity each frame, or could miss in a schedule that
         // does not run every frame, is noted as it happens.
         app.add_observer(note_rules_removed)
-            .add_observer(note_settings_removed);
+            .add_observer(note_settings_removed)
+            .add_observer(note_table_dropped);
         if self.hierarchy {
             app.add_observer(note_moved).add_observer(note_unparented);
         }
@@ -138,6 +139,11 @@ impl Plugin for CollisionRulesPlugin {
 /// moves to another context).
 fn note_moved(event: On<Insert<(ChildOf, RapierRigidBodyHandle)>>, mut ledger: ResMut<Ledger>) {
     ledger.moved.push(event.entity);
+}
+
+/// A context that dropped its own table takes the shared one again.
+fn note_table_dropped(event: On<Remove<ContextRuleTable>>, mut ledger: ResMut<Ledger>) {
+    ledger.table_dropped.push(event.entity);
 }
 
 fn note_unparented(event: On<Remove<ChildOf>>, mut ledger: ResMut<Ledger>) {
@@ -172,16 +178,16 @@ fn note_settings_removed(
 /// tables are not copied.
 fn share_table(
     shared: Res<RuleTable>,
-    mut contexts: Query<(&mut CollisionRules, Option<Ref<ContextRuleTable>>)>,
-    mut dropped: RemovedComponents<ContextRuleTable>,
+    mut ledger: ResMut<Ledger>,
+    mut contexts: Query<(Entity, &mut CollisionRules, Option<Ref<ContextRuleTable>>)>,
 ) {
-    let dropped: Vec<Entity> = dropped.read().collect();
-    for (mut rules, own) in &mut contexts {
+    let dropped = std::mem::take(&mut ledger.table_dropped);
+    for (context, mut rules, own) in &mut contexts {
         let (table, changed) = match &own {
             Some(own) => (&own.0, own.is_changed()),
             None => (&*shared, shared.is_changed()),
         };
-        if changed || rules.is_added() || !dropped.is_empty() {
+        if changed || rules.is_added() || dropped.contains(&context) {
             rules.rules_mut().copy_group_table(table.as_rule_set());
         }
     }

@@ -77,7 +77,7 @@ fn main() {
     for _ in 0..10 {
         hooks.step(&mut world);
     }
-    let pairs = hooks.pairs().count();
+    let pairs = hooks.pairs(&world).count();
     let before = live();
     drop(hooks);
     let kept = before - live();

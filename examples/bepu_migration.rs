@@ -133,21 +133,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for _ in 0..2 {
         hooks.step(&mut world);
     }
-    println!("pair.CollisionRule = rule  ->  hooks.set_pair_rule_in(&world, a, b, rule)");
+    println!("pair.CollisionRule = rule  ->  hooks.set_pair_rule(&world, a, b, rule)");
     check(
         "the live pair takes the override",
-        hooks.set_pair_rule_in(&world, ca, floor, CollisionRule::NoResponse),
+        hooks.set_pair_rule(&world, ca, floor, CollisionRule::NoResponse),
     )?;
     check(
         "pair_rule reads it back",
-        hooks.pair_rule(floor, ca) == Some(CollisionRule::NoResponse),
+        hooks.pair_rule(&world, floor, ca) == Some(CollisionRule::NoResponse),
     )?;
     println!(
-        "pair.UpdateMode = ManifoldUpdateSetting.AlwaysUpdate  ->  hooks.set_manifold_update_in(&world, a, b, ManifoldUpdate::Always)"
+        "pair.UpdateMode = ManifoldUpdateSetting.AlwaysUpdate  ->  hooks.set_manifold_update(&world, a, b, ManifoldUpdate::Always)"
     );
     check(
         "manifold setting",
-        hooks.set_manifold_update_in(&world, ca, floor, ManifoldUpdate::Always),
+        hooks.set_manifold_update(&world, ca, floor, ManifoldUpdate::Always),
     )?;
     println!(
         "entity.CollisionRules changed; ForceCollisionRuleRecalculation()  ->  hooks.force_recalculation(a)"
@@ -156,7 +156,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     hooks.step(&mut world);
     check(
         "the override is gone",
-        hooks.pair_rule_in(&world, ca, floor) == Some(CollisionRule::Normal),
+        hooks.pair_rule(&world, ca, floor) == Some(CollisionRule::Normal),
     )?;
     println!(
         "(edits reach live pairs before the next step by default: RecalculationPolicy::OnChange;"

@@ -42,13 +42,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
         hooks.step(&mut world);
-        through_first |= hooks.pair_rule_in(&world, body, first) == Some(CollisionRule::NoResponse);
+        through_first |= hooks.pair_rule(&world, body, first) == Some(CollisionRule::NoResponse);
     }
     let x = world.bodies[runner].translation().x;
     println!("the runner crossed the first wall and stopped at the second: x = {x:.2}");
     if !through_first
         || !(3.5..5.0).contains(&x)
-        || hooks.pair_rule_in(&world, body, second) != Some(CollisionRule::Normal)
+        || hooks.pair_rule(&world, body, second) != Some(CollisionRule::Normal)
     {
         return Err(format!("unexpected end at x = {x}").into());
     }

@@ -64,7 +64,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     for &(name, body, collider) in &limbs {
         let p = world.bodies[body].translation();
-        let on_floor = hooks.pair_rule_in(&world, collider, floor);
+        let on_floor = hooks.pair_rule(&world, collider, floor);
         println!(
             "{name:>12}: landed at ({:+.2}, {:.2}), pair with the floor {on_floor:?}",
             p.x, p.y
@@ -74,7 +74,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     let limb_pairs = hooks
-        .pairs_in(&world)
+        .pairs(&world)
         .filter(|(a, b, _)| limbs.iter().any(|l| l.2 == *a) && limbs.iter().any(|l| l.2 == *b))
         .count();
     println!("live pairs between limbs: {limb_pairs}");

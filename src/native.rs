@@ -745,6 +745,12 @@ pub(crate) fn touches_entries(
 
 /// The class of collider `leaf`, or `None` if its chain carries a personal
 /// rule or mixes effective groups.
+///
+/// A node's effective group is the first explicit group at or above it,
+/// else the colliding body's default group (`docs/semantics.md`, "Effective
+/// group"), so the chain's groups are its explicit ones, plus that default
+/// when the root has none: a chain with no explicit group is one class, the
+/// collider's own body's, whatever its ancestors' types.
 fn native_class(
     rules: &CollisionRuleSet,
     bodies: &RigidBodySet,
@@ -752,23 +758,31 @@ fn native_class(
     leaf: ColliderHandle,
     dynamic: bool,
 ) -> Option<Class> {
-    let mut group = None;
+    let mut explicit: Option<CollisionGroup> = None;
+    let mut root_grouped = false;
     let mut node = Some(Node::Collider(leaf));
     while let Some(current) = node {
-        if rules
-            .record(current)
-            .is_some_and(|r| r.personal.is_decided())
-        {
+        let record = rules.record(current);
+        if record.is_some_and(|r| r.personal.is_decided()) {
             return None;
         }
-        let effective = rules.effective_group(bodies, colliders, current);
-        if group.is_some_and(|g| g != effective) {
-            return None;
+        let own = record.and_then(|r| r.group);
+        if let Some(group) = own {
+            if explicit.is_some_and(|g| g != group) {
+                return None;
+            }
+            explicit = Some(group);
         }
-        group = Some(effective);
+        root_grouped = own.is_some();
         node = rules.hierarchy.next(bodies, colliders, current);
     }
-    group.map(|group| Class { group, dynamic })
+    let fallback = Class::unreached(dynamic).group;
+    let group = match explicit {
+        Some(group) if !root_grouped && group != fallback => return None,
+        Some(group) => group,
+        None => fallback,
+    };
+    Some(Class { group, dynamic })
 }
 
 /// The first decided personal rule up the chain of `leaf`, and its depth

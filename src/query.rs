@@ -55,7 +55,7 @@ impl CollisionRuleSet {
                 return false;
             }
             let why = self.explain(bodies, colliders, source, handle);
-            let decided = if self.by_kinematic_entry(bodies, colliders, &why) {
+            let decided = if Self::by_kinematic_entry(&why) {
                 self.default_rule()
             } else {
                 why.decided

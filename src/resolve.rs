@@ -55,6 +55,10 @@ pub struct Explanation {
     /// The two nodes whose comparison decided, the first from the first
     /// collider's chain; `None` for `Default`.
     pub nodes: Option<(Node, Node)>,
+    /// For the group stage, the effective groups of the two nodes, whose
+    /// table entry decided (the first from the first collider's chain);
+    /// `None` for the other stages.
+    pub groups: Option<(CollisionGroup, CollisionGroup)>,
     /// The rule the stage gave before the special case of `docs/semantics.md` (two
     /// non-dynamic colliders with `Normal` get `NoResponse`).
     pub decided: CollisionRule,
@@ -196,7 +200,10 @@ impl CollisionRuleSet {
             previous = Some(groups);
             let rule = self.groups.get(groups.0, groups.1);
             if rule.is_decided() {
-                return decided(Stage::Group, k, 0, (a[i].node, b[j].node), rule);
+                return Explanation {
+                    groups: Some(groups),
+                    ..decided(Stage::Group, k, 0, (a[i].node, b[j].node), rule)
+                };
             }
         }
 
@@ -207,6 +214,7 @@ impl CollisionRuleSet {
             step: 0,
             distance: 0,
             nodes: None,
+            groups: None,
             decided: self.default_rule,
         }
     }
@@ -219,6 +227,10 @@ impl CollisionRuleSet {
         leaf: ColliderHandle,
     ) -> Chain<'a> {
         let present = colliders.contains(leaf);
+        // A node with no group at or above it counts as the colliding body's
+        // default group, whatever its ancestors' types (`docs/semantics.md`,
+        // "Effective group"): a parent map alone changes no pair.
+        let fallback = default_group(bodies, colliders, Node::Collider(leaf));
         let mut links: SmallVec<[Link<'a>; INLINE_CHAIN]> = SmallVec::new();
         let mut node = Some(Node::Collider(leaf));
         while let Some(current) = node {
@@ -226,12 +238,12 @@ impl CollisionRuleSet {
                 node: current,
                 // A stale collider handle is a node with no rules.
                 record: if present { self.record(current) } else { None },
-                group: default_group(bodies, colliders, current),
+                group: fallback,
             });
             node = self.hierarchy.next(bodies, colliders, current);
         }
         // Effective groups: own group, else the nearest explicit one above,
-        // else the default group already stored. Walk from the root down.
+        // else the fallback already stored. Walk from the root down.
         let mut above: Option<CollisionGroup> = None;
         let (mut any_specific, mut any_personal) = (false, false);
         for link in links.iter_mut().rev() {
@@ -245,8 +257,7 @@ impl CollisionRuleSet {
             }
         }
         Chain {
-            dynamic: default_group(bodies, colliders, Node::Collider(leaf))
-                == CollisionGroup::DEFAULT_DYNAMIC,
+            dynamic: fallback == CollisionGroup::DEFAULT_DYNAMIC,
             links,
             any_specific,
             any_personal,
@@ -260,24 +271,18 @@ impl CollisionRuleSet {
     /// 6). Both chains are then in `DEFAULT_KINEMATIC` from the deciding step
     /// up, so no later step of the group stage decides either: the pair
     /// gets the default rule.
-    pub(crate) fn by_kinematic_entry(
-        &self,
-        bodies: &RigidBodySet,
-        colliders: &ColliderSet,
-        why: &Explanation,
-    ) -> bool {
+    pub(crate) fn by_kinematic_entry(why: &Explanation) -> bool {
         let kinematic = CollisionGroup::DEFAULT_KINEMATIC;
-        why.decided == CollisionRule::NoPair
-            && why.stage == Stage::Group
-            && why.nodes.is_some_and(|(x, y)| {
-                self.effective_group(bodies, colliders, x) == kinematic
-                    && self.effective_group(bodies, colliders, y) == kinematic
-            })
+        why.decided == CollisionRule::NoPair && why.groups == Some((kinematic, kinematic))
     }
 
-    /// The effective group of `node` (`docs/semantics.md`): its own group, else
-    /// the nearest explicit group up its chain, else the default group of
-    /// the rigid body it belongs to.
+    /// The effective group of `node` (`docs/semantics.md`, "Effective
+    /// group"): its own group, else the nearest explicit group up its chain,
+    /// else the default group of the colliding body, which is `node`'s own
+    /// body (a collider's body, or the body itself), whatever the types of
+    /// its ancestors. A node further up another collider's chain may count
+    /// differently in that collider's pairs:
+    /// [`explain`](Self::explain)'s `groups` tells what met in the table.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -388,6 +393,7 @@ fn decided(
         step,
         distance,
         nodes: Some(nodes),
+        groups: None,
         decided: rule,
     }
 }

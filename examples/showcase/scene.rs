@@ -292,7 +292,7 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
         }
         for (actor, s) in actors.iter().zip(&mut seen) {
             let (a, b) = actor.pair;
-            s.live = s.live.or(hooks.pair_rule_in(&world, a, b));
+            s.live = s.live.or(hooks.pair_rule(&world, a, b));
             s.touched |= world
                 .narrow_phase
                 .contact_pair(a, b)
@@ -306,7 +306,7 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
     let limb_ys: Vec<f32> = h.limbs.iter().map(|&b| pos(b).y).collect();
     let limb_pairs = (0..3).flat_map(|i| (i + 1..3).map(move |j| (i, j)));
     let limbs_apart = limb_pairs
-        .map(|(i, j)| hooks.pair_rule_in(&world, actors[0].colliders[i], actors[0].colliders[j]))
+        .map(|(i, j)| hooks.pair_rule(&world, actors[0].colliders[i], actors[0].colliders[j]))
         .all(|rule| rule.is_none());
     let free_bullet = start.2 + 200.0 * t;
     let outcomes: Vec<(String, bool)> = vec![
@@ -320,7 +320,7 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
                     .iter()
                     .all(|&y| abs_diff_eq!(y, 0.25, epsilon = 0.05))
                 && hooks
-                    .pair_rule_in(&world, actors[0].colliders[2], floor)
+                    .pair_rule(&world, actors[0].colliders[2], floor)
                     .is_some(),
         ),
         (
@@ -428,7 +428,7 @@ fn snapshot(world: &PhysicsWorld, hooks: &RuleHooks, actors: &[Actor]) -> Vec<Sh
         let rule = hooks.rules().resolve(&world.bodies, &world.colliders, a, b);
         // NoPair pairs are never live: their colour shows all the time.
         let shown = hooks
-            .pair_rule_in(world, a, b)
+            .pair_rule(world, a, b)
             .or((rule == CollisionRule::NoPair).then_some(rule));
         for &c in &actor.colliders {
             colors.insert(c, view::color(shown));

@@ -10,7 +10,7 @@ use hashbrown::HashMap;
 use super::super::rapier::prelude::*;
 
 use super::{CalculatorContext, PairCreated, RecalculationPolicy, RuleHooks};
-use super::super::CollisionRule;
+use super::super::{CollisionRule, CollisionRuleSet};
 use super::super::pairs::{self, ManifoldUpdate, PairKey, PairState};
 use super::super::project::body_types;
 use super::super::resolve::special_case;
@@ -68,7 +68,7 @@ impl RuleHooks {
     ) -> CollisionRule {
         let why = self.rules.explain(bodies, colliders, a, b);
         if why.rule != CollisionRule::NoPair
-            || !self.rules.by_kinematic_entry(bodies, colliders, &why)
+            || !CollisionRuleSet::by_kinematic_entry(&why)
         {
             return why.rule;
         }

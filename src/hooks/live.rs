@@ -3,11 +3,10 @@
 //!
 //! Rapier holds every pair; the hooks keep state only for the pairs they
 //! decide (hooked pairs), so that the parts of a world the rules do not
-//! reach cost nothing and nothing copies Rapier's pair list per step. The
-//! methods without a world ([`RuleHooks::pair_rule`], [`RuleHooks::pairs`])
-//! answer the hooked pairs; the `*_in` methods take the world and answer
-//! every pair Rapier holds, on demand: the hooked ones from the hooks, the
-//! others from Rapier's graph and the rules.
+//! reach cost nothing and nothing copies Rapier's pair list per step. Every
+//! method takes the world ([`WorldRef`]) and answers every pair Rapier
+//! holds, on demand, however it is decided: the hooked ones from the hooks,
+//! the others from Rapier's graph and the rules.
 
 use std::sync::PoisonError;
 
@@ -74,27 +73,15 @@ impl<'a> From<&'a PhysicsWorld> for WorldRef<'a> {
 
 /// Live pairs.
 impl RuleHooks {
-    /// The rule of the hooked pair of `a` and `b`, in either order, as of
-    /// the last step; `None` if they form no hooked live pair (a `NoPair`
-    /// pair is not live). Hooked pairs are those a per-pair decision reaches
-    /// (a personal or specific rule, an override, a calculator: see
-    /// `docs/semantics.md`); every other pair is decided by Rapier's own
-    /// groups and is answered by [`pair_rule_in`](Self::pair_rule_in), which
-    /// takes the world.
-    #[must_use]
-    pub fn pair_rule(&self, a: ColliderHandle, b: ColliderHandle) -> Option<CollisionRule> {
-        let key = PairKey::new(a, b);
-        self.pairs
-            .get(key)
-            .filter(|state| !state.absent)
-            .map(PairState::rule)
-            .filter(|&rule| rule != CollisionRule::NoPair)
-    }
-
     /// The rule of the live pair of `a` and `b`, in either order, for any
-    /// pair Rapier holds now; `None` if they form no live pair. Answered on
-    /// demand: a look-up in Rapier's graph (the pairs of `a`) and, for a pair
-    /// the hooks do not decide, the default calculation. Nothing per step.
+    /// pair Rapier holds now, however it is decided (Rapier's groups as the
+    /// planner wrote them, or the hook); `None` if they form no live pair (a
+    /// `NoPair` pair is not live). Answered on demand: a look-up in Rapier's
+    /// graph (the pairs of `a`) and, for a pair the hooks do not decide, the
+    /// default calculation. Nothing per step.
+    ///
+    /// `world` is a `&PhysicsWorld`, or a [`WorldRef::new`] over a bare
+    /// pipeline's narrow phase and sets.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -108,10 +95,10 @@ impl RuleHooks {
     /// let mut hooks = RuleHooks::default();
     /// hooks.step(&mut world);
     /// // No rule reaches the cube or the floor: Rapier decides them alone.
-    /// assert_eq!(hooks.pair_rule_in(&world, cube, floor), Some(CollisionRule::Normal));
+    /// assert_eq!(hooks.pair_rule(&world, cube, floor), Some(CollisionRule::Normal));
     /// ```
     #[must_use]
-    pub fn pair_rule_in<'w>(
+    pub fn pair_rule<'w>(
         &self,
         world: impl Into<WorldRef<'w>>,
         a: ColliderHandle,
@@ -129,25 +116,44 @@ impl RuleHooks {
         .filter(|&rule| rule != CollisionRule::NoPair)
     }
 
-    /// Every hooked live pair (see [`pair_rule`](Self::pair_rule)), with its
-    /// rule, in no particular order; [`pairs_in`](Self::pairs_in) lists
-    /// every live pair.
-    pub fn pairs(
+    /// The hooked live pairs as of the last step, with their rules: the
+    /// hooks' own table, which the crate's tests compare with Rapier's graph.
+    /// Not part of the API: [`pairs`](Self::pairs) answers every pair.
+    #[doc(hidden)]
+    pub fn hooked_pairs(
         &self,
     ) -> impl Iterator<Item = (ColliderHandle, ColliderHandle, CollisionRule)> + '_ {
-        let hooked = self
-            .pairs
+        self.pairs
             .iter()
             .filter(|(_, state)| !state.absent)
-            .map(|(key, state)| (key.colliders(), state.rule()));
-        hooked
+            .map(|(key, state)| (key.colliders(), state.rule()))
             .filter(|&(_, rule)| rule != CollisionRule::NoPair)
             .map(|((a, b), rule)| (a, b, rule))
     }
 
-    /// Every live pair Rapier holds now, with its rule, in no particular
-    /// order: on demand, a walk of Rapier's pair lists.
-    pub fn pairs_in<'a, W: Into<WorldRef<'a>>>(
+    /// Every live pair Rapier holds now, with its rule, however it is
+    /// decided, in no particular order: on demand, a walk of Rapier's pair
+    /// lists.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed());
+    /// let floor = world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+    /// let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.0, 0.0)));
+    /// let cube = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_personal(body, CollisionRule::NoResponse);
+    /// hooks.step(&mut world);
+    /// let pairs: Vec<_> = hooks.pairs(&world).collect();
+    /// assert_eq!(pairs.len(), 1);
+    /// let (a, b, rule) = pairs[0];
+    /// assert!((a, b) == (cube, floor) || (a, b) == (floor, cube));
+    /// assert_eq!(rule, CollisionRule::NoResponse);
+    /// ```
+    pub fn pairs<'a, W: Into<WorldRef<'a>>>(
         &'a self,
         world: W,
     ) -> impl Iterator<Item = (ColliderHandle, ColliderHandle, CollisionRule)> + use<'a, W> {
@@ -176,21 +182,11 @@ impl RuleHooks {
     /// Replaces the rule of the live pair of `a` and `b` for the rest of the
     /// pair's life (automatic recalculation leaves it alone;
     /// [`force_recalculation`](Self::force_recalculation) drops it). `Defer`
-    /// drops the override. `NoPair` ends the pair for the crate. Returns
-    /// `false`, changing nothing, if `a` and `b` form no hooked live pair
-    /// (see [`pair_rule`](Self::pair_rule));
-    /// [`set_pair_rule_in`](Self::set_pair_rule_in) reaches every pair.
-    pub fn set_pair_rule(
-        &mut self,
-        a: ColliderHandle,
-        b: ColliderHandle,
-        rule: CollisionRule,
-    ) -> bool {
-        self.override_pair(a, b, None, rule)
-    }
-
-    /// [`set_pair_rule`](Self::set_pair_rule) for any live pair Rapier holds
-    /// now: a pair Rapier decided alone is hooked from the next step on.
+    /// drops the override. `NoPair` ends the pair for the crate. Any live
+    /// pair Rapier holds now can be given a rule: a pair Rapier decided
+    /// alone is hooked from the next step on. Returns `false`, changing
+    /// nothing, if `a` and `b` form no live pair (see
+    /// [`pair_rule`](Self::pair_rule)).
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -203,13 +199,13 @@ impl RuleHooks {
     /// let cube = world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
     /// let mut hooks = RuleHooks::default();
     /// hooks.step(&mut world);
-    /// assert!(hooks.set_pair_rule_in(&world, cube, floor, CollisionRule::NoResponse));
+    /// assert!(hooks.set_pair_rule(&world, cube, floor, CollisionRule::NoResponse));
     /// for _ in 0..60 {
     ///     hooks.step(&mut world);
     /// }
     /// assert!(world.bodies[body].translation().y < -1.0, "the cube fell through");
     /// ```
-    pub fn set_pair_rule_in<'w>(
+    pub fn set_pair_rule<'w>(
         &mut self,
         world: impl Into<WorldRef<'w>>,
         a: ColliderHandle,
@@ -252,11 +248,10 @@ impl RuleHooks {
         })
     }
 
-    /// Sets how the hooked live pair of `a` and `b` updates its contacts.
-    /// Returns `false`, changing nothing, if they form no hooked live pair
-    /// (see [`pair_rule`](Self::pair_rule));
-    /// [`set_manifold_update_in`](Self::set_manifold_update_in) reaches
-    /// every pair.
+    /// Sets how the live pair of `a` and `b` updates its contacts; any
+    /// live pair Rapier holds now (a pair Rapier decided alone is hooked from
+    /// the next step on). Returns `false`, changing nothing, if they form no
+    /// live pair (see [`pair_rule`](Self::pair_rule)).
     ///
     /// `ManifoldUpdate::Never` is refused the same way (`false`, nothing
     /// changed) when a collider of the pair is made of parts: a triangle
@@ -264,18 +259,7 @@ impl RuleHooks {
     /// one manifold per touching part, and parts come and go as the bodies
     /// move, so frozen contacts could not be kept (`docs/semantics.md`,
     /// "Manifold settings").
-    pub fn set_manifold_update(
-        &mut self,
-        a: ColliderHandle,
-        b: ColliderHandle,
-        update: ManifoldUpdate,
-    ) -> bool {
-        self.manifold_pair(a, b, None, update)
-    }
-
-    /// [`set_manifold_update`](Self::set_manifold_update) for any pair
-    /// Rapier holds now.
-    pub fn set_manifold_update_in<'w>(
+    pub fn set_manifold_update<'w>(
         &mut self,
         world: impl Into<WorldRef<'w>>,
         a: ColliderHandle,
@@ -310,16 +294,20 @@ impl RuleHooks {
         })
     }
 
-    /// The manifold setting of the hooked live pair of `a` and `b` (see
+    /// The manifold setting of the live pair of `a` and `b` (`ByRule` for a
+    /// pair that was never given one); `None` if they form no live pair (see
     /// [`pair_rule`](Self::pair_rule)).
     #[must_use]
-    pub fn manifold_update(&self, a: ColliderHandle, b: ColliderHandle) -> Option<ManifoldUpdate> {
-        match self.pairs.get(PairKey::new(a, b)) {
-            Some(state) => {
-                (state.rule() != CollisionRule::NoPair && !state.absent).then_some(state.manifold)
-            }
-            None => self.pair_rule(a, b).map(|_| ManifoldUpdate::ByRule),
-        }
+    pub fn manifold_update<'w>(
+        &self,
+        world: impl Into<WorldRef<'w>>,
+        a: ColliderHandle,
+        b: ColliderHandle,
+    ) -> Option<ManifoldUpdate> {
+        let rule = self.pair_rule(world, a, b)?;
+        let state = self.pairs.get(PairKey::new(a, b));
+        debug_assert!(rule.is_decided(), "a live pair has a rule");
+        Some(state.map_or(ManifoldUpdate::ByRule, |state| state.manifold))
     }
 
     /// Recalculates, before the next step, every live pair of `node` and of

@@ -102,7 +102,7 @@ type CreatedCallback = Box<dyn Fn(&PairCreated<'_>) -> Option<CollisionRule> + S
 /// let mut paired = false;
 /// for _ in 0..60 {
 ///     hooks.step(&mut world);
-///     paired |= hooks.pair_rule_in(&world, g, floor) == Some(CollisionRule::NoResponse);
+///     paired |= hooks.pair_rule(&world, g, floor) == Some(CollisionRule::NoResponse);
 /// }
 /// let y = world.bodies[ghost].translation().y;
 /// assert!(y < -1.0, "the ghost fell through the floor: y = {y}");
@@ -171,7 +171,7 @@ impl std::fmt::Debug for RuleHooks {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("RuleHooks")
             .field("policy", &self.policy)
-            .field("live_pairs", &self.pairs().count())
+            .field("hooked_pairs", &self.hooked_pairs().count())
             .field("calculator", &self.calculator.is_some())
             .field("on_created", &self.on_created.is_some())
             .finish_non_exhaustive()

@@ -3,7 +3,7 @@
 //! one-call bare pipeline, and the calls a bare-pipeline user can forget.
 
 use super::rapier::prelude::*;
-use super::rules::{CollisionRule, ManifoldUpdate, RuleHooks};
+use super::rules::{CollisionRule, ManifoldUpdate, RuleHooks, WorldRef};
 use super::{at, cuboid};
 
 use super::scenes::Events;
@@ -185,8 +185,12 @@ fn step_pipeline_is_step_on_bare_sets() {
         let x = |s: &Crossing| s.world.bodies[s.ball].translation().x.to_bits();
         assert_eq!(x(&stepped), x(&bare), "step {step}: the ball's x diverged");
         assert_eq!(
-            hooks1.pair_rule(stepped.shot, stepped.slab),
-            hooks2.pair_rule(bare.shot, bare.slab),
+            hooks1.pair_rule(&stepped.world, stepped.shot, stepped.slab),
+            hooks2.pair_rule(
+                WorldRef::new(&bare.world.narrow_phase, &bare.world.bodies, &bare.world.colliders),
+                bare.slab,
+                bare.shot,
+            ),
             "step {step}: the live pair"
         );
     }
@@ -222,7 +226,7 @@ fn a_forgotten_call_fails_loudly_and_names_it() {
         (
             "a pair override, without wake_edited",
             |s, hooks| {
-                assert!(hooks.set_pair_rule(s.shot, s.slab, CollisionRule::Normal));
+                assert!(hooks.set_pair_rule(&s.world, s.shot, s.slab, CollisionRule::Normal));
                 let w = &mut s.world;
                 hooks.prepare(&w.bodies, &mut w.colliders);
                 s.pipeline_step(Some(hooks), &Events::new());
@@ -234,7 +238,7 @@ fn a_forgotten_call_fails_loudly_and_names_it() {
         (
             "a Never setting without freeze_manifolds",
             |s, hooks| {
-                assert!(hooks.set_manifold_update(s.shot, s.slab, ManifoldUpdate::Never));
+                assert!(hooks.set_manifold_update(&s.world, s.shot, s.slab, ManifoldUpdate::Never));
                 let w = &mut s.world;
                 hooks.prepare(&w.bodies, &mut w.colliders);
                 hooks.wake_edited(&mut w.islands, &mut w.bodies);

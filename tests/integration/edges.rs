@@ -40,14 +40,18 @@ fn user_answers_between_non_dynamic_bodies_take_the_special_case() {
         }
         hooks.step(&mut scene.world);
         if how == "override" {
-            let set = hooks.set_pair_rule_in(&scene.world, platform, scene.floor, answer);
+            let set = hooks.set_pair_rule(&scene.world, platform, scene.floor, answer);
             assert!(set, "{how} {answer:?}: the pair is live");
             hooks.step(&mut scene.world);
         }
-        let read = hooks.pair_rule_in(&scene.world, platform, scene.floor);
-        assert_eq!(read, Some(expected), "{how} {answer:?}: pair_rule_in");
-        let known = hooks.pair_rule(platform, scene.floor);
-        assert_eq!(known, Some(expected), "{how} {answer:?}: pair_rule");
+        let read = hooks.pair_rule(&scene.world, platform, scene.floor);
+        assert_eq!(read, Some(expected), "{how} {answer:?}: pair_rule");
+        let known = hooks.pair_rule(&scene.world, scene.floor, platform);
+        assert_eq!(
+            known,
+            Some(expected),
+            "{how} {answer:?}: pair_rule, floor first"
+        );
     }
 }
 
@@ -71,23 +75,23 @@ fn a_disabled_collider_keeps_its_rules_and_loses_its_overrides() {
         );
         let floor = scene.floor;
         assert!(
-            hooks.set_pair_rule_in(&scene.world, cube, floor, Normal),
+            hooks.set_pair_rule(&scene.world, cube, floor, Normal),
             "{personal:?}: live"
         );
         hooks.step(&mut scene.world);
-        assert_eq!(hooks.pair_rule_in(&scene.world, cube, floor), Some(Normal));
+        assert_eq!(hooks.pair_rule(&scene.world, cube, floor), Some(Normal));
 
         scene.world.colliders[cube].set_enabled(false);
         hooks.step(&mut scene.world);
         assert_eq!(
-            hooks.pair_rule_in(&scene.world, cube, floor),
+            hooks.pair_rule(&scene.world, cube, floor),
             None,
             "{personal:?}: disabled"
         );
         assert_eq!(
-            hooks.pair_rule(cube, floor),
+            hooks.pair_rule(&scene.world, floor, cube),
             None,
-            "{personal:?}: disabled, world-less"
+            "{personal:?}: disabled, floor first"
         );
         assert_eq!(hooks.rules().personal(body), personal, "the rules stay");
 
@@ -95,7 +99,7 @@ fn a_disabled_collider_keeps_its_rules_and_loses_its_overrides() {
         scene.world.wake_up(body, true);
         hooks.step(&mut scene.world);
         assert_eq!(
-            hooks.pair_rule_in(&scene.world, cube, floor),
+            hooks.pair_rule(&scene.world, cube, floor),
             Some(personal),
             "{personal:?}: enabled again, the pair is new: no override"
         );
@@ -121,15 +125,15 @@ fn a_joint_without_contacts_leaves_no_live_pair() {
         let expected = contacts.then_some(personal);
         let what = format!("contacts {contacts}, {personal:?}");
         assert_eq!(
-            hooks.pair_rule_in(&scene.world, ca, cb),
+            hooks.pair_rule(&scene.world, ca, cb),
             expected,
-            "{what}: pair_rule_in"
+            "{what}: pair_rule"
         );
         let listed = hooks
-            .pairs_in(&scene.world)
+            .pairs(&scene.world)
             .any(|(x, y, _)| (x, y) == (ca, cb) || (x, y) == (cb, ca));
-        assert_eq!(listed, contacts, "{what}: pairs_in");
-        let known = hooks.pair_rule(ca, cb);
+        assert_eq!(listed, contacts, "{what}: pairs");
+        let known = hooks.pair_rule(&scene.world, cb, ca);
         assert!(
             known.is_none() || contacts,
             "{what}: the hooks know {known:?}"
@@ -422,7 +426,7 @@ fn sharing_survives_later_children_and_reparenting() {
     let wheel_tyre = scene.world.bodies[wheel].colliders()[0];
     for (collider, what) in [(hull, "hull"), (wheel_tyre, "wheel")] {
         assert_eq!(
-            hooks.pair_rule_in(&scene.world, collider, scene.floor),
+            hooks.pair_rule(&scene.world, collider, scene.floor),
             Some(NoResponse),
             "{what}'s pair with the floor"
         );
@@ -431,7 +435,7 @@ fn sharing_survives_later_children_and_reparenting() {
     // steps up its chain, where the floor's chain (two nodes) stays at its
     // root, which has none: the personal stage decides there.
     assert_eq!(
-        hooks.pair_rule_in(&scene.world, spare_tyre, scene.floor),
+        hooks.pair_rule(&scene.world, spare_tyre, scene.floor),
         Some(NoResponse),
         "the spare's pair with the floor"
     );
@@ -559,9 +563,9 @@ fn never_holds_on_boxes_and_is_refused_for_meshes_and_compounds() {
             }
             let rest = world.bodies[body].translation().y;
             let answer = if with_world {
-                hooks.set_manifold_update_in(&world, collider, floor, ManifoldUpdate::Never)
+                hooks.set_manifold_update(&world, collider, floor, ManifoldUpdate::Never)
             } else {
-                hooks.set_manifold_update(collider, floor, ManifoldUpdate::Never)
+                hooks.set_manifold_update(&world, floor, collider, ManifoldUpdate::Never)
             };
             assert_eq!(
                 answer, accepted,
@@ -573,7 +577,7 @@ fn never_holds_on_boxes_and_is_refused_for_meshes_and_compounds() {
                 lowest = lowest.min(world.bodies[body].translation().y);
             }
             assert_eq!(
-                hooks.manifold_update(collider, floor) == Some(ManifoldUpdate::Never),
+                hooks.manifold_update(&world, collider, floor) == Some(ManifoldUpdate::Never),
                 accepted,
                 "{scene} (world: {with_world}): the pair's setting is Never"
             );

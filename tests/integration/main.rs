@@ -16,6 +16,8 @@ macro_rules! dimension_free_tests {
         pub mod driver;
         #[path = "errors.rs"]
         mod errors;
+        #[path = "hierarchy.rs"]
+        mod hierarchy;
         #[path = "joints.rs"]
         mod joints;
         #[path = "live.rs"]

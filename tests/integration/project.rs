@@ -312,7 +312,7 @@ fn project_collision_types_are_kept_and_pair_a_hooked_kinematic_with_a_wall() {
         }
         let sees = scene.world.narrow_phase.intersection_pair(sensor, wall) == Some(true);
         let types = scene.world.colliders[sensor].active_collision_types();
-        (sees, hooks.pair_rule_in(&scene.world, sensor, wall), types)
+        (sees, hooks.pair_rule(&scene.world, sensor, wall), types)
     };
     let (plain_sees, _, _) = run(false, true);
     assert!(
@@ -356,7 +356,7 @@ fn groups_the_project_changes_at_runtime_are_followed() {
     let resting = scene.y(upper_body);
     assert!(
         (1.3..1.7).contains(&resting)
-            && hooks.pair_rule_in(&scene.world, upper, lower) == Some(Normal),
+            && hooks.pair_rule(&scene.world, upper, lower) == Some(Normal),
         "before: y = {resting}"
     );
     scene.world.colliders[lower].set_collision_groups(layer(DEBRIS, Group::ALL - PLAYER));
@@ -366,8 +366,8 @@ fn groups_the_project_changes_at_runtime_are_followed() {
     }
     let y = scene.y(upper_body);
     assert!(y < 0.5, "the project's new layers exclude them: y = {y}");
-    assert_eq!(hooks.pair_rule_in(&scene.world, upper, lower), None);
-    assert_eq!(hooks.pair_rule(upper, lower), None);
+    assert_eq!(hooks.pair_rule(&scene.world, upper, lower), None);
+    assert_eq!(hooks.pair_rule(&scene.world, lower, upper), None);
     // The rules never wrote over the project's new layers.
     assert_eq!(
         scene.world.colliders[upper].collision_groups(),
@@ -435,7 +435,7 @@ fn a_ruled_collider_on_its_own_layer_is_hooked_and_keeps_the_layer() {
             "box {i} of column 0 is hooked"
         );
         assert_eq!(
-            hooks.pair_rule_in(&world, a, b),
+            hooks.pair_rule(&world, a, b),
             None,
             "boxes {i} of columns 0 and 1 pair"
         );
@@ -494,7 +494,7 @@ fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
     let mut paired = false;
     for _ in 0..120 {
         hooks.step(&mut world);
-        paired |= hooks.pair_rule_in(&world, g, deck) == Some(NoResponse);
+        paired |= hooks.pair_rule(&world, g, deck) == Some(NoResponse);
     }
     let (yb, yg) = (
         world.bodies[ball].translation().y,

@@ -264,7 +264,8 @@ impl Model {
     }
 
     /// The effective group: own group, else nearest explicit group up the chain, else the
-    /// default group of the node's own body.
+    /// default group of the colliding body, the chain's collider's own body (`chain[0]`),
+    /// whatever the types of the ancestors.
     fn effective_group(
         &self,
         bodies: &RigidBodySet,
@@ -277,7 +278,7 @@ impl Model {
                 return group;
             }
         }
-        if Self::dynamic(bodies, colliders, chain[i]) {
+        if Self::dynamic(bodies, colliders, chain[0]) {
             CollisionGroup::DEFAULT_DYNAMIC
         } else {
             CollisionGroup::DEFAULT_KINEMATIC

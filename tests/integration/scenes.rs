@@ -10,7 +10,7 @@ use std::sync::mpsc::{Receiver, channel};
 use super::rapier::prelude::*;
 use super::rules::{
     CollisionGroup, CollisionRule, CollisionRuleSet, ManifoldUpdate, RecalculationPolicy,
-    RuleError, RuleHooks,
+    RuleError, RuleHooks, WorldRef,
 };
 use super::{at, cuboid};
 
@@ -134,7 +134,7 @@ fn resting_cube(rule: CollisionRule) -> Outcome {
         hooks.step_with_events(&mut scene.world, &events.collector);
         events.drain();
         ever_touching |= scene.touching(cube, scene.floor);
-        let live = hooks.pair_rule_in(&scene.world, cube, scene.floor);
+        let live = hooks.pair_rule(&scene.world, cube, scene.floor);
         ever_live |= live.is_some();
         live_rule = live_rule.or(live);
     }
@@ -313,7 +313,7 @@ fn two_kinematic_bodies_with_a_normal_group_rule_touch_without_pushing() {
         abs_diff_eq!(xa, 0.5, epsilon = 1e-4) && abs_diff_eq!(xb, 1.0, epsilon = 1e-4),
         "a platform was pushed: {xa} {xb}"
     );
-    assert_eq!(hooks.pair_rule_in(&world, ca, cb), Some(NoResponse));
+    assert_eq!(hooks.pair_rule(&world, ca, cb), Some(NoResponse));
 }
 
 #[test]
@@ -333,7 +333,7 @@ fn kinematic_bodies_by_default_form_no_pair() {
         .contact_pair(ca, cb)
         .is_some_and(|p| p.has_any_active_contact());
     assert!(
-        !touching && hooks.pair_rule_in(&world, ca, cb).is_none(),
+        !touching && hooks.pair_rule(&world, ca, cb).is_none(),
         "kinematic pair: touching {touching}"
     );
 }
@@ -368,7 +368,7 @@ fn on_change_applies_an_edit_to_a_sleeping_pair() {
     hooks.rules_mut().set_personal(body, NoResponse);
     run(&mut scene, &mut hooks, 60);
     assert_eq!(
-        hooks.pair_rule(cube, scene.floor),
+        hooks.pair_rule(&scene.world, cube, scene.floor),
         None,
         "the pair outlived the fall"
     );
@@ -384,7 +384,7 @@ fn manual_waits_for_force_recalculation() {
     let (mut scene, mut hooks, body, cube) = sleeping_cube(RecalculationPolicy::Manual);
     hooks.rules_mut().set_personal(body, NoResponse);
     run(&mut scene, &mut hooks, 60);
-    assert_eq!(hooks.pair_rule(cube, scene.floor), Some(Normal));
+    assert_eq!(hooks.pair_rule(&scene.world, cube, scene.floor), Some(Normal));
     assert!(
         abs_diff_eq!(scene.y(body), 0.5, epsilon = 0.05),
         "the edit applied without a recalculation: y = {}",
@@ -447,26 +447,25 @@ fn pair_overrides_last_until_forced() {
     let (other, _) = scene.cube(3.0, 0.5);
     let mut hooks = RuleHooks::default();
     run(&mut scene, &mut hooks, 5);
-    // No rule reaches the cube or the floor: the world-less form knows
-    // nothing of their pair, the on-demand form asks Rapier.
-    assert!(!hooks.set_pair_rule(scene.floor, cube, NoResponse));
+    // No rule reaches the cube or the floor: Rapier decides their pair
+    // alone, and the override hooks it from the next step on.
     assert!(
-        hooks.set_pair_rule_in(&scene.world, scene.floor, cube, NoResponse),
+        hooks.set_pair_rule(&scene.world, scene.floor, cube, NoResponse),
         "the pair was not live"
     );
-    assert_eq!(hooks.pair_rule(cube, scene.floor), Some(NoResponse));
+    assert_eq!(hooks.pair_rule(&scene.world, scene.floor, cube), Some(NoResponse));
     // An edit elsewhere does not undo the override.
     hooks.rules_mut().set_personal(other, NoResponse);
     run(&mut scene, &mut hooks, 2);
-    assert_eq!(hooks.pair_rule(cube, scene.floor), Some(NoResponse));
+    assert_eq!(hooks.pair_rule(&scene.world, scene.floor, cube), Some(NoResponse));
     hooks.force_recalculation(body);
     run(&mut scene, &mut hooks, 1);
     assert_eq!(
-        hooks.pair_rule_in(&scene.world, cube, scene.floor),
+        hooks.pair_rule(&scene.world, cube, scene.floor),
         Some(Normal),
         "force_recalculation kept the override"
     );
-    assert!(!hooks.set_pair_rule(cube, ColliderHandle::invalid(), Normal));
+    assert!(!hooks.set_pair_rule(&scene.world, cube, ColliderHandle::invalid(), Normal));
 }
 
 #[test]
@@ -475,7 +474,7 @@ fn a_pair_override_to_no_response_lets_the_cube_fall() {
     let (body, cube) = scene.cube(0.0, 0.5);
     let mut hooks = RuleHooks::default();
     run(&mut scene, &mut hooks, 5);
-    assert!(hooks.set_pair_rule_in(&scene.world, cube, scene.floor, NoResponse));
+    assert!(hooks.set_pair_rule(&scene.world, cube, scene.floor, NoResponse));
     run(&mut scene, &mut hooks, 60);
     assert!(scene.y(body) < -3.0, "y = {}", scene.y(body));
 }
@@ -531,7 +530,7 @@ fn a_calculator_can_replace_or_delegate() {
     assert!(ya < -3.0 && yb < -3.0, "ya = {ya}, yb = {yb}");
     assert_eq!(
         hooks
-            .pairs()
+            .pairs(&scene.world)
             .filter(|&(x, y, _)| x == cb || y == cb)
             .count(),
         0
@@ -546,7 +545,7 @@ fn always_computes_contacts_without_response() {
     hooks.rules_mut().set_personal(body, NoContacts);
     hooks.set_policy(RecalculationPolicy::Manual);
     run(&mut scene, &mut hooks, 1);
-    assert!(hooks.set_manifold_update(cube, scene.floor, ManifoldUpdate::Always));
+    assert!(hooks.set_manifold_update(&scene.world, cube, scene.floor, ManifoldUpdate::Always));
     let mut touched = false;
     for _ in 0..60 {
         hooks.step(&mut scene.world);
@@ -569,10 +568,10 @@ fn never_keeps_the_contacts_of_the_moment_it_was_set() {
     for _ in 0..30 {
         hooks.step(&mut scene.world);
         let live = hooks
-            .pair_rule_in(&scene.world, cube, scene.floor)
+            .pair_rule(&scene.world, cube, scene.floor)
             .is_some();
         if live && !scene.touching(cube, scene.floor) {
-            frozen_apart = hooks.set_manifold_update_in(
+            frozen_apart = hooks.set_manifold_update(
                 &scene.world,
                 cube,
                 scene.floor,
@@ -598,7 +597,7 @@ fn never_keeps_the_contacts_of_the_moment_it_was_set() {
     let (body, cube) = scene.cube(0.0, 0.5);
     let mut hooks = RuleHooks::default();
     run(&mut scene, &mut hooks, 20);
-    assert!(hooks.set_manifold_update_in(&scene.world, cube, scene.floor, ManifoldUpdate::Never));
+    assert!(hooks.set_manifold_update(&scene.world, cube, scene.floor, ManifoldUpdate::Never));
     run(&mut scene, &mut hooks, 60);
     assert!(
         abs_diff_eq!(scene.y(body), 0.5, epsilon = 0.05),
@@ -606,7 +605,7 @@ fn never_keeps_the_contacts_of_the_moment_it_was_set() {
         scene.y(body)
     );
     assert_eq!(
-        hooks.manifold_update(cube, scene.floor),
+        hooks.manifold_update(&scene.world, cube, scene.floor),
         Some(ManifoldUpdate::Never)
     );
 }
@@ -624,7 +623,7 @@ fn removal_through_rapier_is_noticed_and_reused_handles_start_clean() {
     scene.world.remove_body(body);
     run(&mut scene, &mut hooks, 1);
     assert_eq!(
-        hooks.pairs().count(),
+        hooks.pairs(&scene.world).count(),
         0,
         "a pair of a removed collider survived"
     );
@@ -642,7 +641,7 @@ fn removal_through_rapier_is_noticed_and_reused_handles_start_clean() {
     );
     run(&mut scene, &mut hooks, 30);
     assert_eq!(
-        hooks.pair_rule_in(&scene.world, new_cube, scene.floor),
+        hooks.pair_rule(&scene.world, new_cube, scene.floor),
         Some(Normal)
     );
 
@@ -677,13 +676,13 @@ fn a_ragdoll_ignores_itself_and_lands_on_the_world() -> Result<(), RuleError> {
     }
     for (a, b) in [(p, t), (t, s), (p, s)] {
         assert_eq!(
-            hooks.pair_rule_in(&scene.world, a, b),
+            hooks.pair_rule(&scene.world, a, b),
             None,
             "limbs formed a live pair"
         );
     }
     assert_eq!(
-        hooks.pair_rule_in(&scene.world, s, scene.floor),
+        hooks.pair_rule(&scene.world, s, scene.floor),
         Some(Normal)
     );
     Ok(())
@@ -752,16 +751,18 @@ fn a_bare_pipeline_with_prepare_and_after_step_matches_step() {
     for body in [a, b] {
         assert_eq!(stepped.y(body), bare.y(body), "the bare pipeline diverged");
     }
-    let live = |hooks: &RuleHooks| {
+    let live = |hooks: &RuleHooks, world: WorldRef<'_>| {
         let mut pairs: Vec<_> = hooks
-            .pairs()
+            .pairs(world)
             .map(|(x, y, r)| (x.into_raw_parts(), y.into_raw_parts(), r))
             .collect();
         pairs.sort();
         pairs
     };
-    assert_eq!(live(&hooks1), live(&hooks2));
-    assert!(!live(&hooks1).is_empty());
+    let w = &bare.world;
+    let bare_view = WorldRef::new(&w.narrow_phase, &w.bodies, &w.colliders);
+    assert_eq!(live(&hooks1, (&stepped.world).into()), live(&hooks2, bare_view));
+    assert!(!live(&hooks1, (&stepped.world).into()).is_empty());
 }
 
 /// A small pile (four columns of five boxes, side by side) and its bodies.
@@ -904,7 +905,7 @@ fn more_groups_than_bits_fall_back_to_the_hook_and_stay_exact() {
             i + 1
         );
         assert_eq!(
-            hooks.pair_rule_in(&world, a, b).is_some(),
+            hooks.pair_rule(&world, a, b).is_some(),
             expected,
             "boxes {i} and {}",
             i + 1
@@ -913,11 +914,14 @@ fn more_groups_than_bits_fall_back_to_the_hook_and_stay_exact() {
 }
 
 #[test]
-fn a_colliderless_parent_changing_type_updates_its_descendants_pairs() -> Result<(), RuleError> {
-    // The cube's parent body has no collider; while it is fixed, the cube's
-    // chain ends in the kinematic group and the pair with a kinematic
-    // platform is NoPair. Made dynamic, the parent puts the chain's root in
-    // the dynamic group: the pair becomes Normal, and the cube lands on it.
+fn a_body_changing_type_updates_its_pairs_and_its_parent_changing_type_does_not()
+-> Result<(), RuleError> {
+    // The cube hangs under a colliderless fixed frame and rests on a
+    // kinematic deck. Its pairs read its own type, never its parent's
+    // (`docs/semantics.md`, "Effective group"): the frame made dynamic
+    // changes nothing; the cube made kinematic meets the deck in the
+    // built-in (DEFAULT_KINEMATIC, DEFAULT_KINEMATIC) entry, and made dynamic
+    // again it is Normal with the deck again.
     let mut world = PhysicsWorld::new();
     let frame = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, 10.0)));
     let platform = world.insert_body(RigidBodyBuilder::kinematic_position_based());
@@ -928,24 +932,27 @@ fn a_colliderless_parent_changing_type_updates_its_descendants_pairs() -> Result
     rules.set_parent(cube, frame)?;
     rules.set_default_rule(Defer);
     let mut hooks = RuleHooks::new(rules);
-    run_world(&mut world, &mut hooks, 1);
-    assert_eq!(
-        hooks.pair_rule_in(&world, c, deck),
-        None,
-        "a NoPair pair was live"
-    );
+    run_world(&mut world, &mut hooks, 30);
+    assert_eq!(hooks.pair_rule(&world, c, deck), Some(Defer), "under a fixed frame");
     world.bodies[frame].set_body_type(RigidBodyType::Dynamic, true);
     world.bodies[frame].set_gravity_scale(0.0, true);
-    run_world(&mut world, &mut hooks, 60);
+    run_world(&mut world, &mut hooks, 30);
     let y = world.bodies[cube].translation().y;
-    assert_eq!(
-        hooks.pair_rule_in(&world, c, deck),
-        Some(Defer),
-        "the pair did not follow the parent's type"
-    );
+    assert_eq!(hooks.pair_rule(&world, deck, c), Some(Defer), "under a dynamic frame");
     assert!(
         abs_diff_eq!(y, 0.6, epsilon = 0.05),
-        "the cube did not land on the platform: y = {y}"
+        "the cube did not stay on the platform: y = {y}"
+    );
+    world.bodies[cube].set_body_type(RigidBodyType::KinematicPositionBased, true);
+    run_world(&mut world, &mut hooks, 2);
+    assert_eq!(hooks.pair_rule(&world, c, deck), None, "a kinematic cube paired with the deck");
+    world.bodies[cube].set_body_type(RigidBodyType::Dynamic, true);
+    run_world(&mut world, &mut hooks, 30);
+    let y = world.bodies[cube].translation().y;
+    assert_eq!(hooks.pair_rule(&world, c, deck), Some(Defer), "dynamic again");
+    assert!(
+        abs_diff_eq!(y, 0.6, epsilon = 0.05),
+        "the cube did not land on the platform again: y = {y}"
     );
     Ok(())
 }
@@ -954,4 +961,46 @@ fn run_world(world: &mut PhysicsWorld, hooks: &mut RuleHooks, steps: usize) {
     for _ in 0..steps {
         hooks.step(world);
     }
+}
+
+/// One live-pair API for every pair (`docs/semantics.md`, "Every live
+/// pair, one API"): a pair Rapier decides with the groups the planner wrote,
+/// a pair the hook decides, a pair with no rule at all and a pair that does
+/// not exist, each asked in both argument orders, through `pair_rule` and
+/// `pairs`.
+#[test]
+fn pair_rule_and_pairs_answer_every_pair_however_it_is_decided() {
+    let mut scene = Scene::new();
+    let (planned_body, planned) = scene.cube(-3.0, 0.5);
+    let (hooked_body, hooked) = scene.cube(0.0, 0.5);
+    let (_, plain) = scene.cube(3.0, 0.5);
+    let (_, far) = scene.cube(9.0, 5.0);
+    let mut hooks = RuleHooks::default();
+    // A personal NoResponse on a dynamic body is planned as solver groups;
+    // a specific NoContacts needs the hook.
+    hooks.rules_mut().set_personal(planned_body, NoResponse);
+    hooks.rules_mut().set_specific(hooked_body, scene.ground, NoContacts);
+    hooks.step(&mut scene.world);
+    let stats = hooks.stats();
+    assert_eq!(stats.hooked_colliders, 1, "one collider is hooked: {stats:?}");
+    let floor = scene.floor;
+    let world = &scene.world;
+    let listed: Vec<_> = hooks.pairs(world).collect();
+    let cases = [
+        ("planned", planned, Some(NoResponse)),
+        ("hooked", hooked, Some(NoContacts)),
+        ("no rule", plain, Some(Normal)),
+        ("no pair", far, None),
+    ];
+    for (what, cube, expected) in cases {
+        assert_eq!(hooks.pair_rule(world, cube, floor), expected, "{what}: cube first");
+        assert_eq!(hooks.pair_rule(world, floor, cube), expected, "{what}: floor first");
+        let found: Vec<_> = listed
+            .iter()
+            .filter(|&&(a, b, _)| (a, b) == (cube, floor) || (a, b) == (floor, cube))
+            .map(|&(.., rule)| rule)
+            .collect();
+        assert_eq!(found, Vec::from_iter(expected), "{what}: pairs lists {listed:?}");
+    }
+    assert_eq!(listed.len(), 3, "pairs lists exactly the three: {listed:?}");
 }

@@ -50,7 +50,7 @@ fn each_context_has_its_own_rules_and_table() {
         sim.y(b2)
     );
     assert_eq!(
-        sim.pair_rule_in(second, g2, f2),
+        sim.pair_rule_of(second, g2, f2),
         Some(Normal),
         "the second context's pair"
     );

@@ -121,7 +121,7 @@ impl Sim {
 
     /// The rule of the live pair of two collider entities in `context`,
     /// as Rapier's graph and the rules have it (`None`: no pair).
-    pub fn pair_rule_in(&mut self, context: Entity, a: Entity, b: Entity) -> Option<CollisionRule> {
+    pub fn pair_rule_of(&mut self, context: Entity, a: Entity, b: Entity) -> Option<CollisionRule> {
         let world = self.app.world();
         let (simulation, colliders, bodies, rules) = (
             world.get::<RapierContextSimulation>(context).unwrap(),
@@ -135,12 +135,12 @@ impl Sim {
             &bodies.bodies,
             &colliders.colliders,
         );
-        rules.hooks().pair_rule_in(view, handle(a), handle(b))
+        rules.hooks().pair_rule(view, handle(a), handle(b))
     }
 
     pub fn pair_rule(&mut self, a: Entity, b: Entity) -> Option<CollisionRule> {
         let context = self.context();
-        self.pair_rule_in(context, a, b)
+        self.pair_rule_of(context, a, b)
     }
 
     /// Whether the two collider entities have contacts in the default context.

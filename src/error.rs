@@ -26,13 +26,18 @@ use super::Node;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum RuleError {
     /// A body was given itself as its parent.
-    #[error("body {body:?} cannot be its own parent")]
+    #[error("{} cannot be its own parent", Named(Node::Body(*body)))]
     SelfParent {
         /// The body.
         body: RigidBodyHandle,
     },
     /// The parent is already a descendant of the child.
-    #[error("making {parent:?} the parent of {child:?} would close a cycle")]
+    #[error(
+        "making {} the parent of {} would close a cycle: it is already below it; \
+         call remove_parent on it first",
+        Named(Node::Body(*parent)),
+        Named(Node::Body(*child))
+    )]
     Cycle {
         /// The body that was to get a parent.
         child: RigidBodyHandle,
@@ -42,9 +47,32 @@ pub enum RuleError {
     /// The handle names an object Rapier has removed: the rule set has
     /// forgotten it (the hooks do so for removed objects the rules reached)
     /// or has seen a newer object in the same slot.
-    #[error("{node:?} names a removed object")]
+    #[error(
+        "{} names an object Rapier has removed (its rules are gone; a new object in \
+         its slot has another handle)",
+        Named(*node)
+    )]
     Removed {
         /// The dead handle.
         node: Node,
     },
+}
+
+/// A node as a user names it in a message: "body 3", "collider 5", with the
+/// generation of a reused slot ("body 3, generation 2"). `Debug` keeps the
+/// handles.
+struct Named(Node);
+
+impl std::fmt::Display for Named {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (what, (index, generation)) = match self.0 {
+            Node::Body(handle) => ("body", handle.into_raw_parts()),
+            Node::Collider(handle) => ("collider", handle.into_raw_parts()),
+        };
+        write!(f, "{what} {index}")?;
+        if generation > 0 {
+            write!(f, ", generation {generation}")?;
+        }
+        Ok(())
+    }
 }

@@ -1,7 +1,7 @@
 //! The five rules, their severity order, and what each means to Rapier's
 //! narrow phase: the one place that names `SolverFlags`.
 
-use super::rapier::prelude::SolverFlags;
+use super::rapier::prelude::{ContactPair, SolverFlags};
 
 /// What a pair of colliders is allowed to do, from least to most restrictive.
 ///
@@ -92,6 +92,22 @@ pub(crate) fn contact_answer(computes: bool, responds: bool, again: bool) -> Opt
         (true, true) => Some(SolverFlags::COMPUTE_RIGID_IMPULSES),
         (true, false) if again => None,
         (true, false) => Some(SolverFlags::empty()),
+    }
+}
+
+/// Whether Rapier's contact pair shows another answer than the one the
+/// hook gives a pair with `rule` (its manifold setting `ByRule`): contact
+/// points where the hook removes them, or points the solver would solve
+/// where the hook says no response. After a step with the hooks that cannot
+/// be, so it tells that Rapier stepped without them (`docs/semantics.md`,
+/// "Stepping without the hooks").
+pub(crate) fn answer_overridden(rule: CollisionRule, pair: &ContactPair) -> bool {
+    let with_points = || pair.manifolds().iter().filter(|m| !m.points.is_empty());
+    match contact_answer(rule.computes_contacts(), rule.responds(), false) {
+        None => with_points().next().is_some(),
+        Some(flags) if flags.is_empty() => with_points()
+            .any(|m| m.data.solver_flags.contains(SolverFlags::COMPUTE_RIGID_IMPULSES)),
+        Some(_) => false,
     }
 }
 

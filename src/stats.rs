@@ -83,4 +83,9 @@ pub struct StepStats {
     /// step. They skip it when no body was awake before or after the step
     /// and nothing changed (a resting pair cannot have ended).
     pub swept: bool,
+    /// Whether Rapier was seen to have stepped without the hooks since
+    /// their last step (a debug build panics instead; a release build also
+    /// logs one warning): see `docs/semantics.md`, "Stepping without the
+    /// hooks".
+    pub stepped_without_hooks: bool,
 }

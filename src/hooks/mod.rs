@@ -165,6 +165,12 @@ pub struct RuleHooks {
     exhaustive: bool,
     /// The project's own hooks (see [`RuleHooks::set_user_hooks`]).
     user: Option<Box<dyn PhysicsHooks + Send + Sync>>,
+    /// A hooked pair the hook answered "no contacts" or "no response" in
+    /// the last step, with its rule: if Rapier's graph shows another answer
+    /// before the next step, Rapier stepped without the hooks.
+    witness: Option<(PairKey, CollisionRule)>,
+    /// Whether stepping without the hooks was reported (once).
+    reported_unhooked: bool,
 }
 
 impl std::fmt::Debug for RuleHooks {
@@ -218,6 +224,8 @@ impl RuleHooks {
             written: HandleMap::default(),
             exhaustive: false,
             user: None,
+            witness: None,
+            reported_unhooked: false,
         }
     }
 
@@ -388,37 +396,48 @@ impl RuleHooks {
     /// crate's own (frozen contacts of `ManifoldUpdate::Never`). The hooks
     /// must be `Send + Sync`, as [`RuleHooks`] is.
     ///
-    /// Rapier's one-way platform works as it does without the rules:
+    /// Rapier's one-way platform works as it does without the rules. The
+    /// platform's collider asks for contact modification itself (its
+    /// `ActiveHooks`), and the allowed normal is given in the frame of
+    /// Rapier's `collider1`, which may be the platform or the other body, as
+    /// Rapier's own one-way example does it:
     ///
     /// ```
     /// use rapier3d::prelude::*;
     /// use rapier_collision_rules::{CollisionRule, RuleHooks};
     ///
-    /// /// Platforms let bodies through from below.
-    /// struct OneWay;
+    /// /// The platform lets bodies through from below.
+    /// struct OneWay(ColliderHandle);
     /// impl PhysicsHooks for OneWay {
     ///     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
-    ///         context.update_as_oneway_platform(Vector::Y, 0.1);
+    ///         // The allowed normal is in collider1's frame: up out of the
+    ///         // platform when it is collider1, down onto it otherwise.
+    ///         let up = if context.collider1 == self.0 { Vector::Y } else { -Vector::Y };
+    ///         context.update_as_oneway_platform(up, 0.1);
     ///     }
     /// }
     ///
     /// let mut world = PhysicsWorld::new();
-    /// let platform = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, 2.0, 0.0)));
-    /// world.insert_collider(
+    /// // Inserted before the platform, the box is Rapier's collider1.
+    /// let rider = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(1.0, 3.0, 0.0)));
+    /// world.insert_collider(ColliderBuilder::cuboid(0.25, 0.25, 0.25), Some(rider));
+    /// let deck = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, 2.0, 0.0)));
+    /// let platform = world.insert_collider(
     ///     ColliderBuilder::cuboid(2.0, 0.1, 2.0).active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS),
-    ///     Some(platform),
+    ///     Some(deck),
     /// );
     /// let ball = world.insert_body(RigidBodyBuilder::dynamic().linvel(Vector::new(0.0, 8.0, 0.0)));
-    /// let b = world.insert_collider(ColliderBuilder::ball(0.25), Some(ball));
+    /// world.insert_collider(ColliderBuilder::ball(0.25), Some(ball));
     ///
     /// let mut hooks = RuleHooks::default();
     /// hooks.rules_mut().set_personal(ball, CollisionRule::Normal);
-    /// hooks.set_user_hooks(OneWay);
+    /// hooks.set_user_hooks(OneWay(platform));
     /// for _ in 0..120 {
     ///     hooks.step(&mut world);
     /// }
-    /// let y = world.bodies[ball].translation().y;
-    /// assert!((2.2..2.5).contains(&y), "up through the platform, then resting on it: y = {y}");
+    /// let y = |body: RigidBodyHandle| world.bodies[body].translation().y;
+    /// assert!((2.2..2.5).contains(&y(ball)), "up through the platform, then resting on it: y = {}", y(ball));
+    /// assert!((2.2..2.5).contains(&y(rider)), "the box landed on the platform: y = {}", y(rider));
     /// ```
     pub fn set_user_hooks(&mut self, hooks: impl PhysicsHooks + Send + Sync + 'static) {
         self.user = Some(Box::new(hooks));

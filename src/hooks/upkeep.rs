@@ -15,7 +15,8 @@ use super::{RecalculationPolicy, RuleHooks};
 use super::super::native::{self, ColliderPlan, Request};
 use super::super::pairs::{ManifoldUpdate, PairKey, PairState, made_of_parts};
 use super::super::project::{Settings, Written, body_types};
-use super::super::{FullPass, Node, StepStats};
+use super::super::rule::answer_overridden;
+use super::super::{CollisionRule, FullPass, Node, StepStats};
 
 /// Whether Rapier holds a pair of `a` and `b` (a contact or a sensor pair).
 pub(super) fn pair_exists(
@@ -449,6 +450,7 @@ impl RuleHooks {
     /// frame.) Part of [`step`](Self::step); call it after
     /// [`prepare`](Self::prepare) when stepping a bare pipeline.
     pub fn freeze_manifolds(&mut self, narrow_phase: &NarrowPhase) {
+        self.check_witness(narrow_phase);
         self.owe_freeze = false;
         if !std::mem::take(&mut self.unsettled) {
             return;
@@ -469,6 +471,43 @@ impl RuleHooks {
                 // Step 0 never comes again: no manifold is frozen later.
                 *frozen = Some((0, Vec::new()));
             }
+        }
+    }
+
+    /// Whether Rapier stepped without these hooks since their last step: the
+    /// witness pair (one hooked pair the hook answered "no contacts" or "no
+    /// response") shows another answer in Rapier's graph. One look-up per
+    /// step (`docs/semantics.md`, "Stepping without the hooks").
+    fn check_witness(&mut self, narrow_phase: &NarrowPhase) {
+        let Some((key, rule)) = self.witness.take() else {
+            return;
+        };
+        let (a, b) = key.colliders();
+        let overridden = narrow_phase
+            .contact_pair(a, b)
+            .is_some_and(|pair| answer_overridden(rule, pair));
+        if overridden {
+            self.stats.stepped_without_hooks = true;
+            self.report_unhooked(a, b, rule);
+        }
+    }
+
+    #[cold]
+    fn report_unhooked(&mut self, a: ColliderHandle, b: ColliderHandle, rule: CollisionRule) {
+        let message = format!(
+            "Rapier stepped without the RuleHooks since their last step: the {rule:?} pair of \
+             colliders {a:?} and {b:?} was given contacts and impulses the rules refuse, and \
+             every rule the hook decides was dropped for that step. Step with \
+             `hooks.step(&mut world)` (or `hooks.step_pipeline(..)`, or pass the hooks to \
+             `PhysicsPipeline::step` between `prepare` and `after_step`), never `world.step()`; \
+             in Bevy, add `RapierPhysicsPlugin::<CollisionRulesHooks>`"
+        );
+        // A debug build stops at the first such step, where the developer
+        // looks; a release build keeps running and says it once.
+        if cfg!(debug_assertions) {
+            panic!("{message}");
+        } else if !std::mem::replace(&mut self.reported_unhooked, true) {
+            log::warn!("{message}");
         }
     }
 
@@ -608,6 +647,7 @@ impl RuleHooks {
         let mut retyped = Vec::new();
         let recomputes = self.policy != RecalculationPolicy::Manual;
         let plan = &self.plan;
+        let mut witness = None;
         self.pairs.retain(|key, state| {
             let (a, b) = key.colliders();
             state.absent = false;
@@ -643,6 +683,14 @@ impl RuleHooks {
                 exists_from_hooked_side() && filters_pass(bodies, colliders, joints, a, b)
             };
             never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
+            if keep
+                && witness.is_none()
+                && state.answered_in(step)
+                && state.manifold == ManifoldUpdate::ByRule
+                && matches!(state.rule(), CollisionRule::NoContacts | CollisionRule::NoResponse)
+            {
+                witness = Some((key, state.rule()));
+            }
             // A body changed type (the hooks may not watch it): the rule
             // follows the default groups, and an override the special case.
             // A pair the hook answered was restated with the types it saw.
@@ -660,6 +708,7 @@ impl RuleHooks {
             keep
         });
         self.replan |= never_ended;
+        self.witness = witness;
         for (key, kinds) in retyped {
             let (a, b) = key.colliders();
             let rule = self.calculate(bodies, colliders, a, b);

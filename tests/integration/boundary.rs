@@ -269,3 +269,48 @@ fn a_forgotten_call_fails_loudly_and_names_it() {
         );
     }
 }
+
+/// `world.step()` (Rapier without the hooks) between two steps of the hooks
+/// drops every rule the hook decides for that step: a debug build panics at
+/// the next step of the hooks, naming the fix (`docs/semantics.md`,
+/// "Stepping without the hooks"). Stepping with the hooks throughout, with
+/// the same scene, says nothing.
+#[test]
+fn stepping_rapier_without_the_hooks_is_caught_at_the_next_step() {
+    use super::{cube, slab};
+    for rule in [CollisionRule::NoContacts, CollisionRule::NoResponse] {
+        let build = || {
+            let mut world = PhysicsWorld::new();
+            let ground = world.insert_body(RigidBodyBuilder::fixed());
+            world.insert_collider(slab(10.0, 0.5), Some(ground));
+            let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 1.0)));
+            world.insert_collider(cube(0.5), Some(ghost));
+            let mut hooks = RuleHooks::default();
+            // Every collider hooked: the rule is the hook's alone.
+            hooks.set_planner(false);
+            hooks.rules_mut().set_specific(ghost, ground, rule);
+            (world, hooks)
+        };
+        let (mut world, mut hooks) = build();
+        for _ in 0..40 {
+            hooks.step(&mut world);
+            assert!(!hooks.stats().stepped_without_hooks, "{rule:?}: stepped with the hooks");
+        }
+        let (mut world, mut hooks) = build();
+        for _ in 0..3 {
+            hooks.step(&mut world);
+        }
+        world.step();
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            hooks.step(&mut world);
+        }));
+        let message = outcome
+            .err()
+            .and_then(|panic| panic.downcast::<String>().ok())
+            .unwrap_or_else(|| panic!("{rule:?}: stepping without the hooks went unnoticed"));
+        assert!(
+            message.contains("hooks.step(&mut world)") && message.contains("never `world.step()`"),
+            "{rule:?}: the message names the fix: {message}"
+        );
+    }
+}

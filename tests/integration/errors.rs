@@ -60,8 +60,19 @@ fn errors_display_lowercase_and_name_the_handles() {
         parent: b[1],
     };
     let text = error.to_string();
-    assert!(text.starts_with("making"), "{text}");
-    assert!(text.contains(&format!("{:?}", b[0])), "{text}");
+    assert_eq!(
+        text,
+        "making body 1 the parent of body 0 would close a cycle: it is already below it; \
+         call remove_parent on it first"
+    );
+    assert!(format!("{error:?}").contains(&format!("{:?}", b[0])), "Debug keeps the handles");
+    let removed = RuleError::Removed {
+        node: ColliderHandle::from_raw_parts(5, 2).into(),
+    };
+    assert!(
+        removed.to_string().starts_with("collider 5, generation 2 names an object Rapier has removed"),
+        "{removed}"
+    );
     let boxed: Box<dyn std::error::Error> = Box::new(error);
     assert!(boxed.source().is_none());
 }

@@ -921,6 +921,16 @@ impl GroupSettings {
     /// one of them. Bits are taken from `room` (what the project's settings
     /// leave), from the highest down, away from the low bits projects
     /// usually name their layers with.
+    ///
+    /// A group the table relates that has no member yet counts as having a
+    /// dynamic one, so that it has its bit, and the groups it relates to
+    /// their filters, before its first member comes: Rapier looks again at
+    /// every pair of a collider whose groups are rewritten, which wakes the
+    /// bodies resting on it, and the first member of a group would otherwise
+    /// rewrite every collider of the groups it relates to (the floor under
+    /// a sleeping pile). Where the bits would not fit with those groups
+    /// counted, only the groups with members are (`docs/architecture.md`,
+    /// "The planner").
     fn new(
         rules: &CollisionRuleSet,
         classes: impl Iterator<Item = Class>,
@@ -936,6 +946,30 @@ impl GroupSettings {
                 entry.1 = true;
             }
         }
+        let mut awaiting = members.clone();
+        for (a, b, rule) in rules.groups.iter() {
+            if rule.is_decided() {
+                for g in [a, b] {
+                    awaiting.entry(g).or_insert((true, false));
+                }
+            }
+        }
+        if awaiting.len() > members.len() {
+            let settings = GroupSettings::of_members(rules, awaiting, room);
+            if settings.bits.len() == settings.involved.len() {
+                return settings;
+            }
+        }
+        GroupSettings::of_members(rules, members, room)
+    }
+
+    /// The settings of the groups in `members`, with whether each has
+    /// dynamic and non-dynamic members.
+    fn of_members(
+        rules: &CollisionRuleSet,
+        members: HashMap<CollisionGroup, (bool, bool)>,
+        room: Room,
+    ) -> GroupSettings {
         let mut used: Vec<CollisionGroup> = members.keys().copied().collect();
         used.sort_unstable();
         let group_rule = |a: CollisionGroup, b: CollisionGroup| {

@@ -1004,3 +1004,35 @@ fn pair_rule_and_pairs_answer_every_pair_however_it_is_decided() {
     }
     assert_eq!(listed.len(), 3, "pairs lists exactly the three: {listed:?}");
 }
+
+/// The first body put into a group whose table entry Rapier's groups decide
+/// changes only its own collider: the boxes asleep on the shared floor stay
+/// asleep (`docs/architecture.md`, "The planner": a group the table relates
+/// has its bit before its first member).
+#[test]
+fn the_first_member_of_a_group_wakes_only_its_own_body() {
+    let mut scene = Scene::new();
+    let boxes: Vec<_> = (0..10).map(|i| scene.cube(i as f32 * 3.0 - 15.0, 0.5).0).collect();
+    let mut hooks = RuleHooks::default();
+    let ghosts = hooks.rules_mut().create_group();
+    hooks
+        .rules_mut()
+        .set_group_rule(ghosts, CollisionGroup::DEFAULT_KINEMATIC, NoResponse);
+    run(&mut scene, &mut hooks, 300);
+    let asleep = |scene: &Scene| boxes.iter().filter(|&&b| scene.world.bodies[b].is_sleeping()).count();
+    assert_eq!(asleep(&scene), 10, "the boxes fell asleep");
+    for (member, x) in [("first", -13.5), ("second", -10.5)] {
+        let (ghost, _) = scene.cube(x, 3.0);
+        hooks.rules_mut().set_group(ghost, Some(ghosts));
+        run(&mut scene, &mut hooks, 1);
+        let stats = hooks.stats();
+        assert_eq!(
+            asleep(&scene),
+            10,
+            "the {member} member woke the boxes on the floor: {stats:?}"
+        );
+        run(&mut scene, &mut hooks, 90);
+        let y = scene.y(ghost);
+        assert!(y < -1.0, "the {member} member did not pass the floor: y = {y}");
+    }
+}

@@ -13,54 +13,25 @@ macro_rules! dimension {
         pub use $rapier;
         use $rapier as rapier;
 
-        #[path = "error.rs"]
-        mod error;
-        #[path = "group.rs"]
-        mod group;
-        #[path = "hierarchy.rs"]
-        mod hierarchy;
         #[path = "hooks/mod.rs"]
         mod hooks;
-        #[path = "integrity.rs"]
-        mod integrity;
-        #[path = "joints.rs"]
-        mod joints;
-        #[path = "layers.rs"]
-        mod layers;
-        #[path = "native.rs"]
-        mod native;
-        #[path = "node.rs"]
-        mod node;
-        #[path = "pairs.rs"]
-        mod pairs;
-        #[path = "project.rs"]
-        mod project;
-        #[path = "query.rs"]
-        mod query;
-        #[path = "resolve.rs"]
+        #[path = "model/mod.rs"]
+        mod model;
+        #[path = "planner/mod.rs"]
+        mod planner;
+        #[path = "resolve/mod.rs"]
         mod resolve;
-        #[path = "rule.rs"]
-        mod rule;
-        #[path = "rule_set.rs"]
-        mod rule_set;
-        #[cfg(feature = "serde")]
-        #[path = "snapshot.rs"]
-        mod snapshot;
-        #[path = "stats.rs"]
-        mod stats;
-        #[path = "tombstones.rs"]
-        mod tombstones;
+        #[path = "world/mod.rs"]
+        mod world;
 
-        pub use error::RuleError;
-        pub use group::CollisionGroup;
-        pub use hooks::{CalculatorContext, PairCreated, RecalculationPolicy, RuleHooks, WorldRef};
-        pub use integrity::Problem;
-        pub use node::Node;
-        pub use pairs::ManifoldUpdate;
+        pub use hooks::{
+            CalculatorContext, FullPass, ManifoldUpdate, PairCreated, RecalculationPolicy,
+            RuleHooks, StepStats, WorldRef,
+        };
+        pub use model::{
+            CollisionGroup, CollisionRule, CollisionRuleSet, Node, Problem, RuleError,
+        };
         pub use resolve::{Explanation, Stage};
-        pub use rule::CollisionRule;
-        pub use rule_set::CollisionRuleSet;
-        pub use stats::{FullPass, StepStats};
     };
 }
 

@@ -9,12 +9,11 @@ use std::sync::{MutexGuard, PoisonError};
 use hashbrown::HashMap;
 use super::super::rapier::prelude::*;
 
-use super::{CalculatorContext, PairCreated, RecalculationPolicy, RuleHooks};
-use super::super::{CollisionRule, CollisionRuleSet};
-use super::super::pairs::{self, ManifoldUpdate, PairKey, PairState};
-use super::super::project::body_types;
+use super::{CalculatorContext, ManifoldUpdate, PairCreated, PairKey, PairState, RecalculationPolicy, RuleHooks};
+use super::super::CollisionRule;
+use super::super::model::{BodyKinds, dynamic_body};
 use super::super::resolve::special_case;
-use super::super::rule::contact_answer;
+use super::super::world::body_types;
 
 impl RuleHooks {
     /// A pair's rule: the calculator or the default calculation, then the
@@ -35,7 +34,7 @@ impl RuleHooks {
                     colliders,
                     rules: &self.rules,
                 };
-                special_case(bodies, colliders, a, b, calculator(&context))
+                special_case(BodyKinds::of(bodies, colliders, a, b), calculator(&context))
             }
             None => self.resolve(bodies, colliders, a, b),
         };
@@ -49,7 +48,7 @@ impl RuleHooks {
             };
             // The callback's answer takes the special case too.
             if let Some(replaced) = callback(&created) {
-                rule = special_case(bodies, colliders, a, b, replaced);
+                rule = special_case(BodyKinds::of(bodies, colliders, a, b), replaced);
             }
         }
         rule
@@ -67,22 +66,20 @@ impl RuleHooks {
         b: ColliderHandle,
     ) -> CollisionRule {
         let why = self.rules.explain(bodies, colliders, a, b);
-        if why.rule != CollisionRule::NoPair
-            || !CollisionRuleSet::by_kinematic_entry(&why)
-        {
+        if why.rule != CollisionRule::NoPair || !why.by_kinematic_entry() {
             return why.rule;
         }
-        let types = body_types(bodies, colliders, a, b);
         let (Some(ca), Some(cb)) = (colliders.get(a), colliders.get(b)) else {
             return why.rule;
         };
-        let non_dynamic = !types.0.is_dynamic() && !types.1.is_dynamic();
-        if non_dynamic
+        let kinds = BodyKinds::of(bodies, colliders, a, b);
+        let types = body_types(bodies, colliders, a, b);
+        if kinds.neither_dynamic()
             && self
                 .own_settings(a, ca)
                 .types_allow(self.own_settings(b, cb), types)
         {
-            special_case(bodies, colliders, a, b, self.rules.default_rule())
+            special_case(kinds, self.rules.default_rule())
         } else {
             why.rule
         }
@@ -102,14 +99,13 @@ impl RuleHooks {
         a: ColliderHandle,
         b: ColliderHandle,
     ) -> CollisionRule {
-        let types = body_types(bodies, colliders, a, b);
-        let kinds = (types.0.is_dynamic(), types.1.is_dynamic());
+        let kinds = PairKey::new(a, b).kinds(bodies, colliders);
         let rule = state.rule_for(kinds);
         if !self.recomputes(state) {
             return rule;
         }
         // Two non-dynamic bodies: the rule may rest on the project's types.
-        let typed = !kinds.0 && !kinds.1 && self.calculator.is_none() && self.on_created.is_none();
+        let typed = kinds.neither_dynamic() && self.calculator.is_none() && self.on_created.is_none();
         if kinds != state.kinds || typed {
             self.calculate(bodies, colliders, a, b)
         } else {
@@ -154,7 +150,7 @@ impl RuleHooks {
         context: &PairFilterContext<'_>,
         key: PairKey,
         state: &PairState,
-        kinds: (bool, bool),
+        kinds: BodyKinds,
     ) -> (CollisionRule, ManifoldUpdate, bool) {
         let pending = self.pending().get(&key).map(PairState::rule);
         let rule = pending.unwrap_or_else(|| {
@@ -188,7 +184,7 @@ impl RuleHooks {
         let (a, b) = key.colliders();
         let rule = self.calculate(context.bodies, context.colliders, a, b);
         let kinds = kinds_in(context, key);
-        let parts = pairs::made_of_parts(context.colliders, key);
+        let parts = key.made_of_parts(context.colliders);
         let state = PairState::new(rule, self.step, kinds, parts);
         // Later answers in this step at the same poses are the CCD's.
         state.poses.store(poses(context), Ordering::Relaxed);
@@ -245,8 +241,7 @@ impl RuleHooks {
                 // A pair of non-dynamic bodies that is not refused may owe
                 // its rule to types the project has narrowed since, on a
                 // collider the hooks do not watch: decided again too.
-                let typed = !kinds.0
-                    && !kinds.1
+                let typed = kinds.neither_dynamic()
                     && (state.computed != CollisionRule::NoPair || self.widened_pair(context));
                 if (kinds != state.kinds || typed) && self.recomputes(state) {
                     return self.restate(context, key, state, kinds);
@@ -300,16 +295,15 @@ fn sensor_pair(context: &PairFilterContext<'_>) -> bool {
 /// Whether the body of each collider of `key` is dynamic, in key order,
 /// read from the hook's context.
 #[inline]
-fn kinds_in(context: &PairFilterContext<'_>, key: PairKey) -> (bool, bool) {
-    let dynamic = |body: Option<RigidBodyHandle>| {
-        body.and_then(|b| context.bodies.get(b))
-            .is_some_and(|b| b.is_dynamic())
+fn kinds_in(context: &PairFilterContext<'_>, key: PairKey) -> BodyKinds {
+    let kinds = BodyKinds {
+        first: dynamic_body(context.bodies, context.rigid_body1),
+        second: dynamic_body(context.bodies, context.rigid_body2),
     };
-    let (first, second) = (dynamic(context.rigid_body1), dynamic(context.rigid_body2));
     if key.colliders().0 == context.collider1 {
-        (first, second)
+        kinds
     } else {
-        (second, first)
+        kinds.swapped()
     }
 }
 
@@ -402,14 +396,14 @@ impl RuleHooks {
         let (step, manifolds) = frozen.get_or_insert_with(|| (self.step, Vec::new()));
         match manifolds.iter().find(|m| m.subshapes() == subshapes) {
             Some(manifold) => {
-                let thawed = pairs::thaw(bodies, body1, body2, manifold, rigid.normal);
+                let thawed = super::pair_state::thaw(bodies, body1, body2, manifold, rigid.normal);
                 rigid.solver_contacts.clear();
                 rigid.solver_contacts.extend(thawed);
             }
             // Manifolds are frozen in the step the setting took effect; one
             // that appears later had no contacts then.
             None if *step == self.step => {
-                let manifold = pairs::freeze(
+                let manifold = super::pair_state::freeze(
                     bodies,
                     body1,
                     body2,
@@ -475,5 +469,36 @@ impl PhysicsHooks for RuleHooks {
         {
             user.modify_solver_contacts(context);
         }
+    }
+}
+
+/// The contact filter's answer for a pair: `None` for no contacts, else the
+/// solver flags. `computes` and `responds` come from the pair's rule and
+/// manifold setting; `again` is true for a second answer in one step, which
+/// only the CCD asks: a pair without response must then be invisible to the
+/// sweep (`Some(empty)` would stop the fast body at it).
+#[inline]
+pub(crate) fn contact_answer(computes: bool, responds: bool, again: bool) -> Option<SolverFlags> {
+    match (computes, responds) {
+        (false, _) => None,
+        (true, true) => Some(SolverFlags::COMPUTE_RIGID_IMPULSES),
+        (true, false) if again => None,
+        (true, false) => Some(SolverFlags::empty()),
+    }
+}
+
+/// Whether Rapier's contact pair shows another answer than the one the
+/// hook gives a pair with `rule` (its manifold setting `ByRule`): contact
+/// points where the hook removes them, or points the solver would solve
+/// where the hook says no response. After a step with the hooks that cannot
+/// be, so it tells that Rapier stepped without them (`docs/semantics.md`,
+/// "Stepping without the hooks").
+pub(crate) fn answer_overridden(rule: CollisionRule, pair: &ContactPair) -> bool {
+    let with_points = || pair.manifolds().iter().filter(|m| !m.points.is_empty());
+    match contact_answer(rule.computes_contacts(), rule.responds(), false) {
+        None => with_points().next().is_some(),
+        Some(flags) if flags.is_empty() => with_points()
+            .any(|m| m.data.solver_flags.contains(SolverFlags::COMPUTE_RIGID_IMPULSES)),
+        Some(_) => false,
     }
 }

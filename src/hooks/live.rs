@@ -12,15 +12,22 @@ use std::sync::PoisonError;
 
 use super::super::rapier::prelude::*;
 
-use super::RuleHooks;
-use super::upkeep::{Joints, filters_pass, kinds_of, pair_exists};
-
-/// A pair's rule as the default calculation gives it, with whether each
-/// body is dynamic and whether a collider is made of parts; `None` when
-/// Rapier holds no such pair.
-type Native = Option<(CollisionRule, (bool, bool), bool)>;
-use super::super::pairs::{ManifoldUpdate, PairKey, PairState, made_of_parts};
+use super::{ManifoldUpdate, PairKey, PairState, RuleHooks};
+use super::super::model::BodyKinds;
+use super::super::world::{Joints, filters_pass, pair_exists};
 use super::super::{CollisionRule, Node};
+
+/// A pair Rapier decides alone, as the live-pair edits need it to start
+/// keeping state for it.
+#[derive(Clone, Copy)]
+struct Native {
+    /// Its rule, as the default calculation gives it.
+    rule: CollisionRule,
+    /// Whether each body is dynamic, in key order.
+    kinds: BodyKinds,
+    /// Whether a collider of the pair is made of parts.
+    parts: bool,
+}
 
 /// What Rapier holds of a world, for the live-pair queries that answer on
 /// demand: its narrow phase and its sets. Made from a `&PhysicsWorld`, or
@@ -224,7 +231,7 @@ impl RuleHooks {
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
-        native: Native,
+        native: Option<Native>,
         edit: impl FnOnce(&mut PairState),
     ) -> bool {
         let Some(state) = self.live_state(a, b, native) else {
@@ -240,7 +247,7 @@ impl RuleHooks {
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
-        native: Native,
+        native: Option<Native>,
         rule: CollisionRule,
     ) -> bool {
         self.edit_pair(a, b, native, |state| {
@@ -274,12 +281,12 @@ impl RuleHooks {
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
-        native: Native,
+        native: Option<Native>,
         update: ManifoldUpdate,
     ) -> bool {
         let parts = match self.pairs.get(PairKey::new(a, b)) {
             Some(state) => state.parts,
-            None => native.is_some_and(|(.., parts)| parts),
+            None => native.is_some_and(|native| native.parts),
         };
         if update == ManifoldUpdate::Never && parts {
             return false;
@@ -317,13 +324,19 @@ impl RuleHooks {
         self.forced.push(node.into());
     }
 
-    /// [`rapier_rule`](Self::rapier_rule), with the body kinds of the pair.
-    fn rapier_state(&self, world: WorldRef<'_>, a: ColliderHandle, b: ColliderHandle) -> Native {
+    /// [`rapier_rule`](Self::rapier_rule), with what a new entry needs.
+    fn rapier_state(
+        &self,
+        world: WorldRef<'_>,
+        a: ColliderHandle,
+        b: ColliderHandle,
+    ) -> Option<Native> {
         let key = PairKey::new(a, b);
-        let kinds = kinds_of(world.bodies, world.colliders, key);
-        let parts = made_of_parts(world.colliders, key);
-        self.rapier_rule(world, a, b)
-            .map(|rule| (rule, kinds, parts))
+        self.rapier_rule(world, a, b).map(|rule| Native {
+            rule,
+            kinds: key.kinds(world.bodies, world.colliders),
+            parts: key.made_of_parts(world.colliders),
+        })
     }
 
     /// The rule of a pair Rapier holds now, decided natively (not hooked);
@@ -347,13 +360,13 @@ impl RuleHooks {
         &mut self,
         a: ColliderHandle,
         b: ColliderHandle,
-        native: Native,
+        native: Option<Native>,
     ) -> Option<&mut PairState> {
         let key = PairKey::new(a, b);
         if self.pairs.get(key).is_none() {
-            let (rule, kinds, parts) = native.filter(|&(r, ..)| r != CollisionRule::NoPair)?;
-            self.pairs
-                .insert(key, PairState::new(rule, self.step, kinds, parts));
+            let native = native.filter(|native| native.rule != CollisionRule::NoPair)?;
+            let state = PairState::new(native.rule, self.step, native.kinds, native.parts);
+            self.pairs.insert(key, state);
         }
         self.pairs
             .get_mut(key)

@@ -1,13 +1,31 @@
-//! `RuleHooks`: the rules inside Rapier's step. This file builds the hooks
-//! and holds their settings; the flow of a step is in the other files:
-//! `upkeep.rs` (what runs before and after Rapier's step, and its cost),
-//! `answer.rs` (the `PhysicsHooks` answers during the step), `live.rs` (the
-//! live-pair API) and `roster.rs` (what the hooks watch).
+//! **Step**: the rules inside Rapier's step.
+//!
+//! [`RuleHooks`] is a drop-in [`PhysicsHooks`]. Around each of Rapier's
+//! steps ([`step`]) it runs the phases before ([`prepare`]: what changed,
+//! through the [`roster`] of what the rules reach; the plan written into
+//! the colliders by [`writer`]; live pairs recalculated by [`recalculate`];
+//! the [`witness`] of a step taken without the hooks) and after ([`sweep`]:
+//! the pairs Rapier made and ended). During the step Rapier asks it about
+//! the pairs of hooked colliders ([`answer`]), which it answers from the
+//! table of live pairs ([`pair_state`]). [`live`] is the live-pair API,
+//! answered on demand from Rapier's graph; [`stats`] says what the last
+//! step did.
+//!
+//! It stands on the [`planner`](super::planner), which decides what Rapier
+//! can test itself, and on [`world`](super::world), which reads and writes
+//! Rapier.
 
 mod answer;
 mod live;
+mod pair_state;
+mod prepare;
+mod recalculate;
 mod roster;
-mod upkeep;
+mod stats;
+mod step;
+mod sweep;
+mod witness;
+mod writer;
 
 use std::sync::Mutex;
 use std::sync::atomic::AtomicBool;
@@ -15,12 +33,15 @@ use std::sync::atomic::AtomicBool;
 use hashbrown::{HashMap, HashSet};
 use super::rapier::prelude::*;
 
-use super::native::Plan;
-use super::node::HandleMap;
-use super::pairs::{PairKey, PairState, PairTable};
-use super::project::{Settings, Written};
-use super::{CollisionRule, CollisionRuleSet, Node, StepStats};
+use super::model::HandleMap;
+use super::planner::Plan;
+use super::world::{Settings, Written};
+use super::{CollisionRule, CollisionRuleSet, Node};
 
+pub use pair_state::ManifoldUpdate;
+pub(crate) use pair_state::{PairState, PairTable};
+pub(crate) use super::world::PairKey;
+pub use stats::{FullPass, StepStats};
 pub use live::WorldRef;
 use roster::Roster;
 

@@ -9,8 +9,8 @@
 use super::super::rapier::prelude::*;
 
 use super::super::Node;
-use super::super::node::HandleMap;
-use super::super::project::Settings;
+use super::super::model::{HandleMap, dynamic_body};
+use super::super::world::Settings;
 
 /// What the hooks remember of a watched collider.
 #[derive(Clone, Copy, Debug)]
@@ -69,11 +69,6 @@ pub(crate) struct Look {
     pub(crate) project_changed: Vec<ColliderHandle>,
 }
 
-fn dynamic(bodies: &RigidBodySet, body: Option<RigidBodyHandle>) -> bool {
-    body.and_then(|b| bodies.get(b))
-        .is_some_and(|b| b.is_dynamic())
-}
-
 impl Roster {
     pub(crate) fn collider_count(&self) -> usize {
         self.collider_list.len()
@@ -108,7 +103,7 @@ impl Roster {
         let body = colliders.get(collider).and_then(|c| c.parent());
         let known = Known {
             body,
-            dynamic: dynamic(bodies, body),
+            dynamic: dynamic_body(bodies, body),
             wrote: None,
             marked: false,
         };
@@ -132,7 +127,7 @@ impl Roster {
         }
         // A count no body has: the first look lists its colliders.
         let known = KnownBody {
-            dynamic: dynamic(bodies, Some(body)),
+            dynamic: dynamic_body(bodies, Some(body)),
             marked: false,
             colliders: usize::MAX,
         };
@@ -252,7 +247,7 @@ impl Roster {
                 look.project_changed.push(handle);
             }
             let body = collider.parent();
-            let is_dynamic = dynamic(bodies, body);
+            let is_dynamic = dynamic_body(bodies, body);
             if known.body != body {
                 recheck.extend(known.body);
                 look.changed.push(Node::Collider(handle));

@@ -2,9 +2,9 @@
 //! that move their layers into the rules (more than 32 layers, rules other
 //! than on and off; `docs/migration.md`).
 
-use super::rapier::prelude::InteractionGroups;
+use super::super::rapier::prelude::InteractionGroups;
 
-use super::{CollisionGroup, CollisionRule, CollisionRuleSet};
+use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet};
 
 impl CollisionRuleSet {
     /// One group for each distinct `(collision groups, solver groups)`

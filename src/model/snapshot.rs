@@ -3,10 +3,10 @@
 //! Handles are saved as Rapier saves them, so a rule set is saved and loaded
 //! together with the Rapier sets it belongs to.
 
-use super::rapier::prelude::RigidBodyHandle;
+use super::super::rapier::prelude::RigidBodyHandle;
 use serde::{Deserialize, Serialize};
 
-use super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, RuleError};
+use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, RuleError};
 
 /// One rule record and the nodes that share it.
 #[derive(Serialize, Deserialize)]
@@ -28,7 +28,7 @@ pub(crate) struct Snapshot {
 
 impl From<CollisionRuleSet> for Snapshot {
     fn from(rules: CollisionRuleSet) -> Snapshot {
-        let mut records: Vec<(super::rule_set::RecordId, SavedRecord)> = Vec::new();
+        let mut records: Vec<(super::records::RecordId, SavedRecord)> = Vec::new();
         for node in rules.nodes() {
             let id = rules.record_id(node).expect("a listed node has a record");
             match records.iter_mut().find(|(r, _)| *r == id) {

@@ -1,10 +1,10 @@
 //! The integrity check: what `CollisionRuleSet::validate` reports.
 
 use hashbrown::HashMap;
-use super::rapier::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
+use super::super::rapier::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 
-use super::rule_set::RecordId;
-use super::{CollisionRuleSet, Node};
+use super::records::RecordId;
+use super::super::{CollisionRuleSet, Node};
 
 /// One thing wrong with a rule set, as [`CollisionRuleSet::validate`] finds it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,7 +47,7 @@ impl CollisionRuleSet {
     /// parent map exists; the parent map has no cycle; every record is used
     /// by exactly the nodes it counts. Returns every problem found.
     ///
-    /// A rule set kept by [`RuleHooks`](super::RuleHooks) is clean after
+    /// A rule set kept by [`RuleHooks`](super::super::RuleHooks) is clean after
     /// every step; one edited by hand while objects are removed from the
     /// world is clean after [`remove_missing`](Self::remove_missing).
     ///

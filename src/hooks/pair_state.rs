@@ -6,12 +6,12 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use hashbrown::HashMap;
-use super::rapier::prelude::{
-    ColliderHandle, ColliderSet, Pose, RigidBodyHandle, RigidBodySet, ShapeType, SolverContact,
-    Vector,
-};
+use super::super::rapier::prelude::{Pose, RigidBodyHandle, RigidBodySet, SolverContact, Vector};
 
-use super::CollisionRule;
+use super::super::CollisionRule;
+use super::super::model::BodyKinds;
+use super::super::resolve::special_case;
+use super::super::world::PairKey;
 
 /// How a live pair's contacts are updated (the BEPU design's `ManifoldUpdateSetting`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -26,24 +26,6 @@ pub enum ManifoldUpdate {
     /// The solver keeps seeing the contacts the pair had when the setting
     /// took effect, fixed in each body's frame, until the setting changes.
     Never,
-}
-
-/// A pair of colliders in a fixed order, so that `(a, b)` and `(b, a)` are one key.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub(crate) struct PairKey(ColliderHandle, ColliderHandle);
-
-impl PairKey {
-    pub(crate) fn new(a: ColliderHandle, b: ColliderHandle) -> PairKey {
-        if a.into_raw_parts() <= b.into_raw_parts() {
-            PairKey(a, b)
-        } else {
-            PairKey(b, a)
-        }
-    }
-
-    pub(crate) fn colliders(self) -> (ColliderHandle, ColliderHandle) {
-        (self.0, self.1)
-    }
 }
 
 /// Solver contacts frozen in each body's frame.
@@ -89,39 +71,17 @@ pub(crate) struct PairState {
     /// Whether each collider's body (in key order) was dynamic when the rule
     /// was computed: the default groups follow the body types, which may
     /// change on a body the hooks do not watch.
-    pub(crate) kinds: (bool, bool),
-    /// A collider of the pair is made of parts (see [`made_of_parts`]):
+    pub(crate) kinds: BodyKinds,
+    /// A collider of the pair is made of parts (see [`PairKey::made_of_parts`]):
     /// `ManifoldUpdate::Never` is refused for it.
     pub(crate) parts: bool,
-}
-
-/// Whether a collider of the pair is made of parts: a triangle mesh,
-/// polyline, height field, voxel set or compound. Rapier keeps one
-/// manifold per touching part, and parts come and go as the bodies move,
-/// so contacts frozen per manifold could not be kept
-/// (`docs/semantics.md`, "Manifold settings").
-pub(crate) fn made_of_parts(colliders: &ColliderSet, key: PairKey) -> bool {
-    let parts = |c: ColliderHandle| {
-        colliders.get(c).is_some_and(|collider| {
-            matches!(
-                collider.shape().shape_type(),
-                ShapeType::TriMesh
-                    | ShapeType::Polyline
-                    | ShapeType::HeightField
-                    | ShapeType::Voxels
-                    | ShapeType::Compound
-            )
-        })
-    };
-    let (a, b) = key.colliders();
-    parts(a) || parts(b)
 }
 
 impl PairState {
     pub(crate) fn new(
         computed: CollisionRule,
         step: u64,
-        kinds: (bool, bool),
+        kinds: BodyKinds,
         parts: bool,
     ) -> PairState {
         PairState {
@@ -148,10 +108,9 @@ impl PairState {
     /// non-dynamic bodies cannot respond, so `Normal` is `NoResponse`
     /// (`docs/semantics.md`). The computed rule has it already.
     #[inline]
-    pub(crate) fn rule_for(&self, kinds: (bool, bool)) -> CollisionRule {
+    pub(crate) fn rule_for(&self, kinds: BodyKinds) -> CollisionRule {
         match self.overridden {
-            Some(CollisionRule::Normal) if kinds == (false, false) => CollisionRule::NoResponse,
-            Some(rule) => rule,
+            Some(rule) => special_case(kinds, rule),
             None => self.computed,
         }
     }

@@ -1,7 +1,6 @@
-//! The five rules, their severity order, and what each means to Rapier's
-//! narrow phase: the one place that names `SolverFlags`.
-
-use super::rapier::prelude::{ContactPair, SolverFlags};
+//! The five rules and their severity order. What each means to Rapier's
+//! narrow phase is said once, by the hooks' answer
+//! (`hooks/answer.rs`, the one place that names `SolverFlags`).
 
 /// What a pair of colliders is allowed to do, from least to most restrictive.
 ///
@@ -77,37 +76,6 @@ impl CollisionRule {
     #[inline]
     pub(crate) fn responds(self) -> bool {
         self <= CollisionRule::Normal
-    }
-}
-
-/// The contact filter's answer for a pair: `None` for no contacts, else the
-/// solver flags. `computes` and `responds` come from the pair's rule and
-/// manifold setting; `again` is true for a second answer in one step, which
-/// only the CCD asks: a pair without response must then be invisible to the
-/// sweep (`Some(empty)` would stop the fast body at it).
-#[inline]
-pub(crate) fn contact_answer(computes: bool, responds: bool, again: bool) -> Option<SolverFlags> {
-    match (computes, responds) {
-        (false, _) => None,
-        (true, true) => Some(SolverFlags::COMPUTE_RIGID_IMPULSES),
-        (true, false) if again => None,
-        (true, false) => Some(SolverFlags::empty()),
-    }
-}
-
-/// Whether Rapier's contact pair shows another answer than the one the
-/// hook gives a pair with `rule` (its manifold setting `ByRule`): contact
-/// points where the hook removes them, or points the solver would solve
-/// where the hook says no response. After a step with the hooks that cannot
-/// be, so it tells that Rapier stepped without them (`docs/semantics.md`,
-/// "Stepping without the hooks").
-pub(crate) fn answer_overridden(rule: CollisionRule, pair: &ContactPair) -> bool {
-    let with_points = || pair.manifolds().iter().filter(|m| !m.points.is_empty());
-    match contact_answer(rule.computes_contacts(), rule.responds(), false) {
-        None => with_points().next().is_some(),
-        Some(flags) if flags.is_empty() => with_points()
-            .any(|m| m.data.solver_flags.contains(SolverFlags::COMPUTE_RIGID_IMPULSES)),
-        Some(_) => false,
     }
 }
 

@@ -1,9 +1,9 @@
 //! Scene queries that follow the rules: a predicate for Rapier's
 //! `QueryFilter` (`docs/semantics.md`, section 6).
 
-use super::rapier::prelude::*;
+use super::super::rapier::prelude::*;
 
-use super::{CollisionRule, CollisionRuleSet};
+use super::super::{CollisionRule, CollisionRuleSet};
 
 impl CollisionRuleSet {
     /// A predicate for [`QueryFilter::predicate`]: keeps a collider when the
@@ -55,7 +55,7 @@ impl CollisionRuleSet {
                 return false;
             }
             let why = self.explain(bodies, colliders, source, handle);
-            let decided = if Self::by_kinematic_entry(&why) {
+            let decided = if why.by_kinematic_entry() {
                 self.default_rule()
             } else {
                 why.decided

@@ -1,8 +1,8 @@
 //! Every refusal of the rule set's editing verbs.
 
-use super::rapier::prelude::RigidBodyHandle;
+use super::super::rapier::prelude::RigidBodyHandle;
 
-use super::Node;
+use super::super::Node;
 
 /// Why an edit was refused. A refused edit changes nothing.
 ///

@@ -2,7 +2,7 @@
 //! every editing verb refuses them alike (`docs/semantics.md`, "Handles of
 //! removed objects").
 
-use super::Node;
+use super::super::Node;
 
 /// Per Rapier slot, the generation last forgotten as removed, plus one (0:
 /// none). Only that exact handle is dead here: a handle of another
@@ -44,7 +44,7 @@ impl Tombstones {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use super::super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
+    use super::super::super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
 
     #[test]
     fn a_buried_handle_is_dead_and_no_other_generation_is() {

@@ -1,7 +1,7 @@
 //! Nodes (the colliders and rigid bodies that carry rules) and the
 //! handle-indexed side tables that hold what the crate knows of them.
 
-use super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
+use super::super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
 
 /// A collider or a rigid body: anything a rule can be attached to.
 ///
@@ -42,6 +42,24 @@ impl Node {
             Node::Collider(handle) => handle.raw_parts().1,
             Node::Body(handle) => handle.raw_parts().1,
         }
+    }
+}
+
+/// The one order on nodes, for deterministic iteration: colliders before
+/// bodies, then by slot and generation.
+impl Ord for Node {
+    fn cmp(&self, other: &Node) -> std::cmp::Ordering {
+        let key = |node: &Node| match *node {
+            Node::Collider(handle) => (0u8, handle.into_raw_parts()),
+            Node::Body(handle) => (1u8, handle.into_raw_parts()),
+        };
+        key(self).cmp(&key(other))
+    }
+}
+
+impl PartialOrd for Node {
+    fn partial_cmp(&self, other: &Node) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
     }
 }
 

@@ -5,9 +5,9 @@
 use std::collections::VecDeque;
 
 use hashbrown::HashSet;
-use super::rapier::prelude::*;
+use super::super::rapier::prelude::*;
 
-use super::{CollisionRuleSet, RuleError};
+use super::super::{CollisionRuleSet, RuleError};
 
 impl CollisionRuleSet {
     /// Gives every link of the multibody that holds `body` its parent link's

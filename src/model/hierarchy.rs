@@ -1,11 +1,11 @@
 //! The parent map between rigid bodies, chains, and the cycle check.
 
-use super::rapier::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
+use super::super::rapier::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 
 use hashbrown::HashMap;
 
 use super::node::HandleMap;
-use super::{Node, RuleError};
+use super::super::{Node, RuleError};
 
 /// The crate's own parent map between rigid bodies. Invariant: it has no
 /// cycle (every `set` checks), so walking up always ends.

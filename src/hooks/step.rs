@@ -1,0 +1,206 @@
+//! The step boundary: stepping a world with the rules, and the parts a
+//! bare pipeline calls around `PhysicsPipeline::step`, each of which
+//! panics naming the part left out (`docs/architecture.md`, "The step
+//! boundary").
+
+use std::sync::PoisonError;
+
+use super::super::rapier::prelude::*;
+
+use super::{ManifoldUpdate, RuleHooks};
+use super::super::StepStats;
+use super::super::world::{Joints, census};
+
+/// Names the call a bare-pipeline user left out; the physics would
+/// otherwise change silently (`docs/architecture.md`, "The step boundary").
+#[cold]
+#[track_caller]
+pub(super) fn missing(call: &str, when: &str) -> ! {
+    panic!(
+        "RuleHooks::{call} was not called {when}: without it the rules do not \
+         hold. Step with RuleHooks::step, RuleHooks::step_pipeline, or call \
+         prepare, freeze_manifolds and wake_edited before PhysicsPipeline::step \
+         and after_step after it"
+    )
+}
+
+/// Stepping.
+impl RuleHooks {
+    /// Steps `world` with the rules: [`prepare`](Self::prepare), waking what
+    /// the edits need awake, Rapier's step, and [`after_step`](Self::after_step).
+    pub fn step(&mut self, world: &mut PhysicsWorld) {
+        self.step_with_events(world, &());
+    }
+
+    /// [`step`](Self::step), with Rapier's events sent to `events`.
+    pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
+        self.step_pipeline(
+            &mut world.physics_pipeline,
+            world.gravity,
+            &world.integration_parameters,
+            &mut world.islands,
+            &mut world.broad_phase,
+            &mut world.narrow_phase,
+            &mut world.bodies,
+            &mut world.colliders,
+            &mut world.impulse_joints,
+            &mut world.multibody_joints,
+            &mut world.soft_bodies,
+            &mut world.ccd_solver,
+            events,
+        );
+    }
+
+    /// Steps a bare `PhysicsPipeline` with the rules: everything
+    /// [`step_with_events`](Self::step_with_events) does around Rapier's
+    /// step. Takes `PhysicsPipeline::step`'s arguments in its order, but
+    /// the hooks.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let (mut bodies, mut colliders) = (RigidBodySet::new(), ColliderSet::new());
+    /// let floor = bodies.insert(RigidBodyBuilder::fixed());
+    /// colliders.insert_with_parent(ColliderBuilder::cuboid(5.0, 0.5, 5.0), floor, &mut bodies);
+    /// let ghost = bodies.insert(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.5, 0.0)));
+    /// colliders.insert_with_parent(ColliderBuilder::ball(0.5), ghost, &mut bodies);
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific(ghost, floor, CollisionRule::NoResponse);
+    ///
+    /// let (mut pipeline, mut islands) = (PhysicsPipeline::new(), IslandManager::new());
+    /// let (mut broad_phase, mut narrow_phase) = (BroadPhaseBvh::new(), NarrowPhase::new());
+    /// let (mut impulse_joints, mut multibody_joints) = (ImpulseJointSet::new(), MultibodyJointSet::new());
+    /// let (mut soft_bodies, mut ccd) = (SoftBodySet::new(), CCDSolver::new());
+    /// let params = IntegrationParameters::default();
+    /// for _ in 0..60 {
+    ///     hooks.step_pipeline(
+    ///         &mut pipeline, Vector::Y * -9.81, &params, &mut islands,
+    ///         &mut broad_phase, &mut narrow_phase, &mut bodies, &mut colliders,
+    ///         &mut impulse_joints, &mut multibody_joints, &mut soft_bodies, &mut ccd, &(),
+    ///     );
+    /// }
+    /// assert!(bodies[ghost].translation().y < 0.0, "the ghost fell through the floor");
+    /// ```
+    #[allow(clippy::too_many_arguments)]
+    pub fn step_pipeline(
+        &mut self,
+        pipeline: &mut PhysicsPipeline,
+        gravity: Vector,
+        integration_parameters: &IntegrationParameters,
+        islands: &mut IslandManager,
+        broad_phase: &mut BroadPhaseBvh,
+        narrow_phase: &mut NarrowPhase,
+        bodies: &mut RigidBodySet,
+        colliders: &mut ColliderSet,
+        impulse_joints: &mut ImpulseJointSet,
+        multibody_joints: &mut MultibodyJointSet,
+        soft_bodies: &mut SoftBodySet,
+        ccd_solver: &mut CCDSolver,
+        events: &dyn EventHandler,
+    ) {
+        let idle = self.idle();
+        if idle {
+            // No collider carries the hook flag: Rapier never calls the hook.
+            self.step += 1;
+            self.stats = StepStats::default();
+        } else {
+            self.prepare(bodies, colliders);
+            self.freeze_manifolds(narrow_phase);
+            self.wake_edited(islands, bodies);
+        }
+        let resting = islands.num_active_bodies() == 0;
+        pipeline.step(
+            gravity,
+            integration_parameters,
+            islands,
+            broad_phase,
+            narrow_phase,
+            bodies,
+            colliders,
+            impulse_joints,
+            multibody_joints,
+            soft_bodies,
+            ccd_solver,
+            &*self,
+            events,
+        );
+        if idle {
+            return;
+        }
+        // Rapier applies removals to its graphs during the step.
+        let census = census(bodies, colliders, narrow_phase);
+        let unchanged = std::mem::replace(&mut self.census, census) == census;
+        let quiet = resting && unchanged && islands.num_active_bodies() == 0;
+        let joints = Joints {
+            impulse: impulse_joints,
+            multibody: multibody_joints,
+        };
+        self.finish_step(narrow_phase, bodies, colliders, Some(joints), quiet);
+    }
+
+    /// Settles `ManifoldUpdate::Never` settings made since the last step
+    /// for pairs that have no contacts now: they are frozen empty. (Pairs
+    /// with contacts are frozen in their next contact update, in each body's
+    /// frame.) Part of [`step`](Self::step); call it after
+    /// [`prepare`](Self::prepare) when stepping a bare pipeline.
+    pub fn freeze_manifolds(&mut self, narrow_phase: &NarrowPhase) {
+        self.check_witness(narrow_phase);
+        self.owe_freeze = false;
+        if !std::mem::take(&mut self.unsettled) {
+            return;
+        }
+        for (key, state) in self.pairs.iter() {
+            if state.manifold != ManifoldUpdate::Never {
+                continue;
+            }
+            let mut frozen = state.frozen.lock().unwrap_or_else(PoisonError::into_inner);
+            if frozen.is_some() {
+                continue;
+            }
+            let (a, b) = key.colliders();
+            let touching = narrow_phase
+                .contact_pair(a, b)
+                .is_some_and(|pair| pair.has_any_active_contact());
+            if !touching {
+                // Step 0 never comes again: no manifold is frozen later.
+                *frozen = Some((0, Vec::new()));
+            }
+        }
+    }
+
+    /// Wakes the bodies of pairs whose rule an edit changed, so that the
+    /// change takes effect on sleeping bodies too. Part of
+    /// [`step`](Self::step); call it after [`prepare`](Self::prepare) when
+    /// stepping a bare pipeline.
+    pub fn wake_edited(&mut self, islands: &mut IslandManager, bodies: &mut RigidBodySet) {
+        for body in self.to_wake.drain(..) {
+            if bodies.contains(body) {
+                islands.wake_up(bodies, body, true);
+            }
+        }
+    }
+
+    /// After a bare `PhysicsPipeline::step`: admits the pairs the hook met
+    /// during the step, forgets hooked pairs Rapier no longer has, and gives
+    /// a rule to pairs of newly hooked colliders that Rapier made without
+    /// asking the hook (pairs of resting bodies).
+    ///
+    /// Rapier may step several times between [`prepare`](Self::prepare)
+    /// and `after_step` (substeps, catch-up steps): the rules hold in each.
+    ///
+    /// # Panics
+    ///
+    /// If [`prepare`](Self::prepare) was not called before the step, or if
+    /// [`wake_edited`](Self::wake_edited) or
+    /// [`freeze_manifolds`](Self::freeze_manifolds) was left out when the
+    /// edits before it needed them.
+    pub fn after_step(
+        &mut self,
+        narrow_phase: &NarrowPhase,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) {
+        self.finish_step(narrow_phase, bodies, colliders, None, false);
+    }
+}

@@ -1,0 +1,66 @@
+//! Whether a body is dynamic: the one fact about Rapier's body types the
+//! rules read (the default groups, the special case), written once.
+
+use super::super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodyHandle, RigidBodySet};
+
+use super::super::Node;
+
+/// Whether `body` is a dynamic rigid body of `bodies`; a missing body, or
+/// none (a collider without a body), is not.
+#[inline]
+pub(crate) fn dynamic_body(bodies: &RigidBodySet, body: Option<RigidBodyHandle>) -> bool {
+    body.and_then(|handle| bodies.get(handle))
+        .is_some_and(|body| body.is_dynamic())
+}
+
+/// Whether the rigid body of `node` (a collider's own body, or the body
+/// itself) is dynamic.
+#[inline]
+pub(crate) fn is_dynamic(bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) -> bool {
+    let body = match node {
+        Node::Collider(handle) => colliders.get(handle).and_then(|c| c.parent()),
+        Node::Body(handle) => Some(handle),
+    };
+    dynamic_body(bodies, body)
+}
+
+/// Whether each body of a pair of colliders is dynamic, in the pair's
+/// order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct BodyKinds {
+    /// The first collider's body.
+    pub(crate) first: bool,
+    /// The second collider's body.
+    pub(crate) second: bool,
+}
+
+impl BodyKinds {
+    /// The kinds of the bodies of `a` and `b`.
+    #[inline]
+    pub(crate) fn of(
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        a: ColliderHandle,
+        b: ColliderHandle,
+    ) -> BodyKinds {
+        BodyKinds {
+            first: is_dynamic(bodies, colliders, Node::Collider(a)),
+            second: is_dynamic(bodies, colliders, Node::Collider(b)),
+        }
+    }
+
+    /// Neither body is dynamic: the pair cannot respond.
+    #[inline]
+    pub(crate) fn neither_dynamic(self) -> bool {
+        !self.first && !self.second
+    }
+
+    /// The same kinds for the pair in the other order.
+    #[inline]
+    pub(crate) fn swapped(self) -> BodyKinds {
+        BodyKinds {
+            first: self.second,
+            second: self.first,
+        }
+    }
+}

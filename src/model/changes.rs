@@ -1,0 +1,105 @@
+//! The change log: what the edits since the hooks last looked touched.
+
+use super::super::Node;
+use super::records::RecordId;
+use super::super::CollisionRuleSet;
+
+/// What the edits since the last [`CollisionRuleSet::take_changes`] touched,
+/// for the hooks' `OnChange` policy.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Changes {
+    /// An edit that can affect any pair (the group table, the default rule).
+    pub(crate) everything: bool,
+    /// A link of the parent map changed: the colliders under a node changed.
+    pub(crate) parents: bool,
+    records: Vec<RecordId>,
+    nodes: Vec<Node>,
+}
+
+/// Past this many remembered edits, the log gives up and says "everything".
+const CHANGE_LOG_LIMIT: usize = 4096;
+
+impl Changes {
+    pub(crate) fn is_empty(&self) -> bool {
+        !self.everything && self.records.is_empty() && self.nodes.is_empty()
+    }
+
+    pub(super) fn node(&mut self, node: Node) {
+        if !self.everything {
+            self.nodes.push(node);
+            self.cap();
+        }
+    }
+
+    pub(super) fn record(&mut self, id: RecordId) {
+        if !self.everything {
+            self.records.push(id);
+            self.cap();
+        }
+    }
+
+    pub(crate) fn everything(&mut self) {
+        self.everything = true;
+        self.records = Vec::new();
+        self.nodes = Vec::new();
+    }
+
+    fn cap(&mut self) {
+        if self.records.len() + self.nodes.len() > CHANGE_LOG_LIMIT {
+            self.everything();
+        }
+    }
+}
+
+
+/// The change log, which the hooks read before each step.
+impl CollisionRuleSet {
+    /// Logs "everything changed": hooks that receive this rule set whole
+    /// (a loaded one put in place of another) recalculate and plan all.
+    #[cfg(feature = "serde")]
+    pub(crate) fn mark_all_changed(&mut self) {
+        self.changes.everything();
+    }
+
+    /// Whether anything was edited since the last [`take_changes`](Self::take_changes).
+    pub(crate) fn has_changes(&self) -> bool {
+        !self.changes.is_empty()
+    }
+
+    /// The edits logged since the last call, and a fresh log.
+    pub(crate) fn take_changes(&mut self) -> Changes {
+        std::mem::take(&mut self.changes)
+    }
+
+    /// The nodes an edit log touched: logged nodes and every user of a
+    /// logged record. `None` when the log says "everything".
+    pub(crate) fn touched_nodes(&self, changes: &Changes) -> Option<Vec<Node>> {
+        if changes.everything {
+            return None;
+        }
+        let mut nodes = changes.nodes.clone();
+        // Only records shared when they were edited are logged (a record
+        // with one user is only that user's, which the log holds): they
+        // send us looking for their users.
+        if !changes.records.is_empty() {
+            nodes.extend(self.nodes().filter(|&node| {
+                self.record_id(node)
+                    .is_some_and(|id| changes.records.contains(&id))
+            }));
+        }
+        Some(nodes)
+    }
+
+    /// Every node the rules name: nodes with a record, subjects of specific
+    /// entries, and bodies of the parent map; in a fixed order.
+    pub(crate) fn ruled_nodes(&self) -> Vec<Node> {
+        let mut nodes: Vec<Node> = self.nodes().chain(self.named.keys().copied()).collect();
+        for (child, parent) in self.hierarchy.links() {
+            nodes.extend([Node::Body(child), Node::Body(parent)]);
+        }
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
+}

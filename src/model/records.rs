@@ -1,0 +1,242 @@
+//! The records of rules that nodes carry, in an arena with a free list,
+//! and how nodes attach to them, share them and let them go.
+
+use hashbrown::HashMap;
+
+use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
+
+/// The rules one node carries. Several nodes may share one record.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct Record {
+    pub(crate) personal: CollisionRule,
+    pub(crate) group: Option<CollisionGroup>,
+    /// Never holds a `Defer` value: an explicit `Defer` is stored as no entry.
+    pub(crate) specific: HashMap<Node, CollisionRule>,
+    /// How many nodes use this record; a record nobody uses is freed at once.
+    pub(super) users: u32,
+}
+
+impl Record {
+    pub(crate) fn users(&self) -> u32 {
+        self.users
+    }
+
+    pub(super) fn is_empty(&self) -> bool {
+        self.personal == CollisionRule::Defer && self.group.is_none() && self.specific.is_empty()
+    }
+}
+
+/// The index of a record in [`Records`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct RecordId(u32);
+
+impl RecordId {
+    pub(crate) fn index(self) -> u32 {
+        self.0
+    }
+}
+
+/// The records, in an arena with a free list.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Records {
+    slots: Vec<Option<Record>>,
+    free: Vec<u32>,
+}
+
+impl Records {
+    fn insert(&mut self, record: Record) -> RecordId {
+        match self.free.pop() {
+            Some(index) => {
+                self.slots[index as usize] = Some(record);
+                RecordId(index)
+            }
+            None => {
+                self.slots.push(Some(record));
+                RecordId(self.slots.len() as u32 - 1)
+            }
+        }
+    }
+
+    #[inline]
+    pub(crate) fn get(&self, id: RecordId) -> &Record {
+        // OK since a node's RecordId always names a live record: records are
+        // freed only when their last user lets go.
+        self.slots[id.0 as usize]
+            .as_ref()
+            .expect("a node names a freed record")
+    }
+
+    pub(super) fn get_mut(&mut self, id: RecordId) -> &mut Record {
+        self.slots[id.0 as usize]
+            .as_mut()
+            .expect("a node names a freed record")
+    }
+
+    /// Lets one user go; returns the record if that was its last user.
+    fn release(&mut self, id: RecordId) -> Option<Record> {
+        let record = self.get_mut(id);
+        record.users -= 1;
+        if record.users > 0 {
+            return None;
+        }
+        self.free.push(id.0);
+        self.slots[id.0 as usize].take()
+    }
+
+    pub(crate) fn live(&self) -> impl Iterator<Item = &Record> + '_ {
+        self.slots.iter().flatten()
+    }
+
+    pub(crate) fn iter_with_ids(&self) -> impl Iterator<Item = (RecordId, &Record)> + '_ {
+        self.slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, slot)| slot.as_ref().map(|r| (RecordId(i as u32), r)))
+    }
+
+    pub(super) fn live_mut(&mut self) -> impl Iterator<Item = &mut Record> + '_ {
+        self.slots.iter_mut().flatten()
+    }
+}
+
+/// Records and the nodes that use them.
+impl CollisionRuleSet {
+    #[inline]
+    pub(crate) fn record_id(&self, node: Node) -> Option<RecordId> {
+        match node {
+            Node::Collider(handle) => self.collider_records.get(handle).copied(),
+            Node::Body(handle) => self.body_records.get(handle).copied(),
+        }
+    }
+
+    #[inline]
+    pub(crate) fn record(&self, node: Node) -> Option<&Record> {
+        self.record_id(node).map(|id| self.records.get(id))
+    }
+
+    /// Whether `node` names an object Rapier has removed, as far as this set
+    /// can tell: it forgot the object as removed, or has seen a newer object
+    /// in the same slot (`docs/semantics.md`, "Handles of removed objects").
+    pub(crate) fn is_removed(&self, node: Node) -> bool {
+        self.removed.holds(node)
+            || match node {
+                Node::Collider(handle) => self.collider_records.is_superseded(handle),
+                Node::Body(handle) => {
+                    self.body_records.is_superseded(handle) || self.hierarchy.is_superseded(handle)
+                }
+            }
+    }
+
+    /// The record of `node`, created empty if it has none; `None` for a
+    /// handle of a removed object (edits through it are ignored).
+    pub(super) fn record_mut(&mut self, node: Node) -> Option<&mut Record> {
+        if self.is_removed(node) {
+            return None;
+        }
+        let id = match self.record_id(node) {
+            Some(id) => id,
+            None => {
+                let id = self.records.insert(Record {
+                    users: 1,
+                    ..Record::default()
+                });
+                self.attach(node, id);
+                // A node that starts carrying rules is an edit of its own.
+                self.changes.node(node);
+                id
+            }
+        };
+        Some(self.records.get_mut(id))
+    }
+
+    /// Makes `node` use record `id`, letting go of the record its slot held
+    /// before (its own, or a removed object's).
+    pub(super) fn attach(&mut self, node: Node, id: RecordId) {
+        let previous = match node {
+            Node::Collider(handle) => self.collider_records.insert(handle, id),
+            Node::Body(handle) => self.body_records.insert(handle, id),
+        };
+        if let Some(previous) = previous {
+            self.release(previous);
+        }
+    }
+
+    /// Lets one user of record `id` go; a freed record's entries no longer
+    /// name anyone. The nodes its entries name lose their entries with that
+    /// user (their side of an entry may no longer be the one to hook): they
+    /// are logged as edited.
+    fn release(&mut self, id: RecordId) {
+        let subjects: Vec<Node> = self.records.get(id).specific.keys().copied().collect();
+        for subject in subjects {
+            self.changes.node(subject);
+        }
+        if let Some(freed) = self.records.release(id) {
+            for other in freed.specific.keys() {
+                self.unname(*other);
+            }
+        }
+    }
+
+    pub(super) fn unname(&mut self, node: Node) {
+        if let Some(count) = self.named.get_mut(&node) {
+            *count -= 1;
+            if *count == 0 {
+                self.named.remove(&node);
+            }
+        }
+    }
+
+    /// Whether the rule set holds any specific entry.
+    pub(crate) fn has_specific(&self) -> bool {
+        !self.named.is_empty()
+    }
+
+    /// Whether any specific entry names `node`.
+    pub(crate) fn is_named(&self, node: Node) -> bool {
+        self.named.contains_key(&node)
+    }
+
+    pub(crate) fn named_nodes(&self) -> impl Iterator<Item = &Node> + '_ {
+        self.named.keys()
+    }
+
+    pub(crate) fn named_count(&self, node: Node) -> u32 {
+        self.named.get(&node).copied().unwrap_or(0)
+    }
+
+    /// Lets go of `node`'s record.
+    pub(super) fn detach(&mut self, node: Node) {
+        let previous = match node {
+            Node::Collider(handle) => self.collider_records.remove(handle),
+            Node::Body(handle) => self.body_records.remove(handle),
+        };
+        if let Some(previous) = previous {
+            self.release(previous);
+        }
+    }
+
+    /// Logs an edit of `node`'s rules (and so of every node sharing its record).
+    pub(super) fn touch(&mut self, node: Node) {
+        self.changes.node(node);
+        // A record shared now: its other users are looked up when the log
+        // is read, even if some of them have left it by then.
+        if let Some(id) = self.record_id(node) {
+            if self.records.get(id).users > 1 {
+                self.changes.record(id);
+            }
+        }
+    }
+
+    /// Drops `node`'s record if it holds nothing and nobody else uses it,
+    /// so that a node whose rules were all cleared costs nothing.
+    pub(super) fn tidy(&mut self, node: Node) {
+        self.touch(node);
+        if let Some(id) = self.record_id(node) {
+            let record = self.records.get(id);
+            if record.users == 1 && record.is_empty() {
+                self.detach(node);
+            }
+        }
+    }
+
+}

@@ -1,0 +1,104 @@
+//! Forgetting removed objects (`docs/semantics.md`, "Removed objects"): their rules,
+//! the entries about them and their parent links.
+
+use super::super::rapier::prelude::{ColliderSet, RigidBodySet};
+
+use super::super::{CollisionRuleSet, Node};
+
+/// Forgetting removed objects (`docs/semantics.md`, section 4).
+impl CollisionRuleSet {
+    /// Forgets a node that left the world: its rules (a shared record lives
+    /// on for its other users), every specific entry about it, and for a body
+    /// every parent link that names it (its children become roots).
+    ///
+    /// [`RuleHooks`](crate) does this by itself for objects removed through
+    /// Rapier; call it when you use the rule set alone. From then on the
+    /// handle is dead to the rule set: `set_parent` refuses it with
+    /// [`RuleError::Removed`](super::super::RuleError::Removed) and the other editing verbs ignore it
+    /// (`docs/semantics.md`, "Handles of removed objects").
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleError};
+    ///
+    /// let mut bodies = RigidBodySet::new();
+    /// let (a, b) = (bodies.insert(RigidBodyBuilder::dynamic()), bodies.insert(RigidBodyBuilder::dynamic()));
+    /// let mut rules = CollisionRuleSet::default();
+    /// rules.set_specific(a, b, CollisionRule::NoPair);
+    /// rules.set_parent(a, b)?;
+    /// rules.remove_node(b);
+    /// assert_eq!(rules.specific(a, b), CollisionRule::Defer);
+    /// assert_eq!(rules.parent(a), None);
+    /// assert_eq!(rules.set_parent(a, b), Err(RuleError::Removed { node: b.into() }));
+    /// # Ok::<(), RuleError>(())
+    /// ```
+    pub fn remove_node(&mut self, node: impl Into<Node>) {
+        let node = node.into();
+        // Only a node the rules held is remembered as removed: whether an
+        // edit through a handle is refused must not depend on which
+        // objects the hooks happened to watch.
+        let held = self.record(node).is_some_and(|r| !r.is_empty())
+            || self.named.contains_key(&node)
+            || matches!(node, Node::Body(body) if self.in_hierarchy(body));
+        self.detach(node);
+        if self.named.remove(&node).is_some() {
+            // The nodes holding an entry about it change their pairs: logged,
+            // as an edit of theirs would be.
+            let holders: Vec<Node> = self
+                .nodes()
+                .filter(|&n| {
+                    self.record(n)
+                        .is_some_and(|r| r.specific.contains_key(&node))
+                })
+                .collect();
+            for record in self.records.live_mut() {
+                record.specific.remove(&node);
+            }
+            for holder in holders {
+                self.changes.node(holder);
+            }
+        }
+        if let Node::Body(body) = node {
+            for (child, parent) in self.hierarchy.links() {
+                if parent == body {
+                    self.changes.node(Node::Body(child));
+                }
+            }
+            self.hierarchy.forget(body);
+        }
+        if held {
+            self.removed.bury(node);
+        }
+    }
+
+    /// Forgets every node the rule set knows that is missing from the Rapier
+    /// sets: bodies and colliders with rules, bodies in the parent map, and
+    /// the subjects of specific entries. Returns how many were forgotten.
+    pub fn remove_missing(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> usize {
+        let exists = |node: Node| match node {
+            Node::Collider(handle) => colliders.contains(handle),
+            Node::Body(handle) => bodies.contains(handle),
+        };
+        let mut missing: Vec<Node> = self.nodes().filter(|&n| !exists(n)).collect();
+        for (child, parent) in self.hierarchy.links() {
+            missing.extend(
+                [Node::Body(child), Node::Body(parent)]
+                    .into_iter()
+                    .filter(|&n| !exists(n)),
+            );
+        }
+        for record in self.records.live() {
+            missing.extend(record.specific.keys().copied().filter(|&n| !exists(n)));
+        }
+        missing.sort_unstable_by_key(|node| match *node {
+            Node::Collider(h) => (0, h.into_raw_parts()),
+            Node::Body(h) => (1, h.into_raw_parts()),
+        });
+        missing.dedup();
+        for &node in &missing {
+            self.remove_node(node);
+        }
+        missing.len()
+    }
+
+}

@@ -1,0 +1,34 @@
+//! **Translate**: which colliders Rapier decides itself, and how.
+//!
+//! A hooked pair costs Rapier its contact recycling, so [`plan`](mod@plan) gives each
+//! collider the rules reach the cheapest mechanism that decides all of its
+//! pairs exactly (`docs/architecture.md`, "The planner"): a native
+//! collider's [`class`] (its effective group and whether its body is
+//! dynamic) becomes collision groups, solver groups and collision types
+//! through the group-level settings ([`group_settings`]), on the bits the
+//! project's own settings leave ([`room`]); personal rules of dynamic
+//! bodies ([`personal`]) and specific `NoPair` and `NoResponse` entries
+//! ([`entry_bits`]) become groups too where that is exact; every other
+//! specific entry and pinned pair hooks its cheaper side ([`carriers`]).
+//! Each collider's result is a [`ColliderPlan`] ([`collider_plan`]),
+//! combined with the project's settings when the hooks write it. A few
+//! colliders can be planned against the rest of a plan ([`replan`]).
+//!
+//! The planner reads the [`model`](super::model) and asks the
+//! [`resolve`](super::resolve) stage nothing: its classes are exact where
+//! they say the same as the calculation (`tests/integration/live.rs`
+//! compares them). It reads Rapier through [`world`](super::world).
+
+pub(crate) mod carriers;
+pub(crate) mod class;
+pub(crate) mod collider_plan;
+pub(crate) mod entry_bits;
+pub(crate) mod group_settings;
+pub(crate) mod personal;
+pub(crate) mod plan;
+pub(crate) mod replan;
+pub(crate) mod room;
+
+pub(crate) use collider_plan::ColliderPlan;
+pub(crate) use plan::{Plan, Request, plan};
+pub(crate) use replan::{replan_some, touches_entries};

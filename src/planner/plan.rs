@@ -1,0 +1,216 @@
+//! What Rapier can test itself. The planner gives each collider the
+//! cheapest mechanism that decides all of its pairs exactly: collision
+//! groups for group-level `NoPair`, solver groups for group-level
+//! `NoResponse`, active collision types for pairs of non-dynamic bodies, and
+//! the hook flag only where a pair needs a decision per pair
+//! (`docs/architecture.md`, "The planner").
+//!
+//! A collider is *native* when its pairs with every other native collider
+//! are a function of two small facts about each side: its effective group
+//! and whether its body is dynamic. That holds when no node of its chain
+//! carries a personal rule, every node of its chain has the same effective
+//! group, and every specific entry that could reach its pairs is carried by
+//! a hooked collider on the other side: then the specific and personal
+//! stages defer, every step of the group stage compares the same two groups,
+//! and the rule is `table[g1, g2]`, else the default, then the special case
+//! of `docs/semantics.md`. A collider of a dynamic body whose chain's
+//! personal rules all say one `Normal`, `NoResponse` or `NoPair` is native
+//! too, where Rapier's test gives its pairs that rule (see
+//! [`personal_natives`]). A pair with a hooked collider is decided by the
+//! hook, so hooked colliders carry permissive groups and pass every native
+//! test.
+//!
+//! Only the colliders the rules reach are planned. Every other collider is
+//! in a default group (`DEFAULT_DYNAMIC` or `DEFAULT_KINEMATIC`) and keeps
+//! Rapier's own settings, which already say `Normal`, and no pair between two
+//! non-dynamic bodies (the built-in table entry): as long as the default
+//! groups' plans are Rapier's defaults, the planner needs nothing of them.
+//! When a rule reaches the default groups, every collider is planned (a
+//! [`FullPass`]).
+
+use hashbrown::{HashMap, HashSet};
+use super::super::rapier::prelude::*;
+
+use super::carriers::carriers;
+use super::class::{Class, native_class};
+use super::collider_plan::ColliderPlan;
+use super::entry_bits::EntryBits;
+use super::group_settings::{GroupSettings, default_refuses};
+use super::personal::personal_natives;
+use super::room::Room;
+use super::super::model::{HandleMap, dynamic_body};
+use super::super::world::{PairKey, Settings};
+use super::super::{CollisionRule, CollisionRuleSet, FullPass, Node};
+
+/// The plan of the colliders the rules reach (or of every collider, in a
+/// full pass). A collider without an entry keeps Rapier's defaults.
+#[derive(Debug, Default)]
+pub(crate) struct Plan {
+    pub(crate) colliders: HandleMap<ColliderHandle, ColliderPlan>,
+    /// The settings of each class that has native members: an edit that
+    /// moves a collider into one of these classes plans that collider alone.
+    pub(super) classes: HashMap<Class, ColliderPlan>,
+    /// Why every collider was planned; `None` when only the reached ones were.
+    pub(crate) full: Option<FullPass>,
+    /// The colliders hooked to carry the specific entries and pinned pairs
+    /// of their other side (see [`plan`]).
+    pub(crate) carriers: HashSet<ColliderHandle>,
+    /// What the project's settings leave to the planner, and the number of
+    /// colliders when every collider was looked at for it; `None` when the
+    /// plan gives no group a bit and relies on no collision type, so that
+    /// no project setting can conflict with it.
+    pub(crate) room: Option<(Room, usize)>,
+    /// Some collider is native by a personal `NoPair` or `NoResponse`,
+    /// which a personal rule elsewhere can make inexact: a collider whose
+    /// chain has a personal rule is then planned with everything.
+    pub(super) personal_restricts: bool,
+}
+
+impl Plan {
+    /// The plan entry of `collider`, or the defaults of an unreached one.
+    pub(crate) fn entry(&self, collider: ColliderHandle, dynamic: bool) -> ColliderPlan {
+        self.colliders
+            .get(collider)
+            .copied()
+            .unwrap_or_else(|| ColliderPlan::unreached(dynamic))
+    }
+}
+
+/// What the planner is asked to plan.
+pub(crate) struct Request<'a> {
+    pub(crate) rules: &'a CollisionRuleSet,
+    pub(crate) bodies: &'a RigidBodySet,
+    pub(crate) colliders: &'a ColliderSet,
+    /// The colliders the rules reach (ignored in a full pass, which plans all).
+    pub(crate) reached: &'a [ColliderHandle],
+    /// The nodes whose records may hold specific entries.
+    pub(crate) ruled: &'a [Node],
+    /// Pairs with an override or a manifold setting: one side is hooked.
+    pub(crate) pinned: &'a [PairKey],
+    /// Set when every collider must pass the hook (a calculator, a callback,
+    /// the `Manual` policy, the planner turned off).
+    pub(crate) all_hooked: Option<FullPass>,
+    /// The project's own settings of a collider.
+    pub(crate) own: &'a dyn Fn(ColliderHandle, &Collider) -> Settings,
+}
+
+impl Request<'_> {
+    /// Both colliders of every pinned pair.
+    pub(super) fn pinned_colliders(&self) -> HashSet<ColliderHandle> {
+        self.pinned
+            .iter()
+            .flat_map(|k| {
+                let (a, b) = k.colliders();
+                [a, b]
+            })
+            .collect()
+    }
+}
+
+/// Plans the colliders of `request`.
+pub(crate) fn plan(request: &Request<'_>) -> Plan {
+    let Request {
+        rules,
+        bodies,
+        colliders,
+        ..
+    } = *request;
+    let mut plan = Plan::default();
+    if let Some(reason) = request.all_hooked {
+        plan.full = Some(reason);
+        for (handle, collider) in colliders.iter() {
+            let entry = ColliderPlan::hooked_plan(dynamic_body(bodies, collider.parent()));
+            plan.colliders.insert(handle, entry);
+        }
+        return plan;
+    }
+
+    // Each reached collider's class, or None where its chain needs the hook.
+    let class_of = |handle: ColliderHandle| {
+        let collider = colliders.get(handle)?;
+        let dynamic = dynamic_body(bodies, collider.parent());
+        Some((
+            handle,
+            native_class(rules, bodies, colliders, handle, dynamic),
+            dynamic,
+        ))
+    };
+    let mut classes: Vec<(ColliderHandle, Option<Class>, bool)> = request
+        .reached
+        .iter()
+        .filter_map(|&h| class_of(h))
+        .collect();
+    let mut settings = GroupSettings::new(rules, classes.iter().filter_map(|c| c.1), Room::ALL);
+    if settings.needs_room() {
+        // Group bits and collision types are shared with the project's
+        // settings of every collider: look at them all.
+        let room = Room::of_world(colliders, request.own);
+        plan.room = Some((room, colliders.len()));
+        settings = GroupSettings::new(rules, classes.iter().filter_map(|c| c.1), room);
+    }
+    // A collider no rule names may carry project types that pair
+    // non-dynamic bodies, where the kinematic entry gives way to a default
+    // rule Rapier's type test cannot say: every collider is looked at.
+    plan.full =
+        (settings.reaches_defaults() || default_refuses(rules)).then_some(FullPass::DefaultGroups);
+    if plan.full.is_some() {
+        classes = colliders.iter().filter_map(|(h, _)| class_of(h)).collect();
+    }
+
+    // Dynamic colliders whose chains say one personal rule (see
+    // `personal_rule`) are native where Rapier's test gives each of their
+    // pairs the rule the personal stage gives it.
+    let personal = personal_natives(request, &classes);
+    plan.personal_restricts = personal.values().any(|&r| r != CollisionRule::Normal);
+
+    // Hooked by their own chains or groups.
+    let mut hooked: HashSet<ColliderHandle> = classes
+        .iter()
+        .filter(|(h, class, _)| {
+            class.is_none_or(|c| settings.entry(c).is_none()) && !personal.contains_key(h)
+        })
+        .map(|&(h, _, _)| h)
+        .collect();
+    // Specific entries Rapier's groups can decide take bits of their own;
+    // the others are carried by a hooked side.
+    let looked_up = plan.room.map(|(room, _)| room);
+    let entry_bits = EntryBits::plan(request, &classes, &settings, &personal, &hooked, looked_up);
+    if plan.room.is_none() {
+        plan.room = entry_bits.room.map(|room| (room, colliders.len()));
+    }
+    plan.carriers = carriers(request, &mut hooked, &entry_bits.decided);
+    // A carrier the rules did not otherwise reach (a named node's collider,
+    // one side of a pinned pair) is planned too.
+    let known: HashSet<ColliderHandle> = classes.iter().map(|c| c.0).collect();
+    let mut extra: Vec<ColliderHandle> = plan
+        .carriers
+        .iter()
+        .copied()
+        .filter(|c| !known.contains(c))
+        .collect();
+    extra.sort_unstable_by_key(|c| c.into_raw_parts());
+    classes.extend(extra.into_iter().filter_map(class_of));
+
+    for (handle, class, dynamic) in classes {
+        let entry = match class.filter(|_| !hooked.contains(&handle)) {
+            None if !hooked.contains(&handle) => personal
+                .get(&handle)
+                .map_or(ColliderPlan::hooked_plan(dynamic), |&rule| {
+                    ColliderPlan::personal(rule)
+                }),
+            None => ColliderPlan::hooked_plan(dynamic),
+            Some(class) => match settings.entry(class) {
+                Some(entry) => {
+                    plan.classes.insert(class, entry);
+                    entry
+                }
+                None => ColliderPlan::hooked_plan(dynamic),
+            },
+        };
+        let own = colliders.get(handle).map(|c| (request.own)(handle, c));
+        let entry = entry_bits.apply(handle, entry);
+        let entry = own.map_or(entry, |own| entry.fitted(own, dynamic, rules));
+        plan.colliders.insert(handle, entry);
+    }
+    plan
+}

@@ -1,0 +1,18 @@
+//! What the crate reads and writes in Rapier: look-ups in Rapier's pair
+//! graphs ([`graph`]), the body types of a pair ([`kinds`]), the shapes that
+//! are made of parts ([`shapes`]), and each collider's settings as the
+//! project set them and as the crate wrote them ([`settings`]).
+//!
+//! The [`planner`](super::planner) and the [`hooks`](super::hooks) stand on
+//! it; it knows nothing of rules.
+
+pub(crate) mod graph;
+pub(crate) mod kinds;
+pub(crate) mod pair_key;
+pub(crate) mod settings;
+pub(crate) mod shapes;
+
+pub(crate) use graph::{Joints, census, filters_pass, pair_exists, partners_of, same_body};
+pub(crate) use kinds::body_types;
+pub(crate) use pair_key::PairKey;
+pub(crate) use settings::{Settings, Written};

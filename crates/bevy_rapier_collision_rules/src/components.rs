@@ -32,8 +32,7 @@ pub struct PersonalRule(pub CollisionRule);
 ///
 /// ```
 /// use bevy::prelude::*;
-/// use bevy_rapier_collision_rules::SpecificRules;
-/// use rapier_collision_rules::CollisionRule;
+/// use bevy_rapier_collision_rules::{CollisionRule, SpecificRules};
 ///
 /// let mut world = World::new();
 /// let wall = world.spawn_empty().id();

@@ -14,15 +14,50 @@ use bevy_rapier3d::rapier::prelude::{
 use rapier_collision_rules::RuleHooks;
 
 use super::CollisionRules;
+use super::misuse::HooksProbe;
 
 /// The rules of every context as bevy_rapier's hooks: give it to
 /// `RapierPhysicsPlugin::<CollisionRulesHooks>`. A project with hooks of
 /// its own puts this parameter in its hooks and asks it first (see
-/// [`filter_contact_pair`](Self::filter_contact_pair)).
+/// [`filter_contact_pair`](Self::filter_contact_pair)). Without
+/// [`CollisionRulesPlugin`](super::CollisionRulesPlugin) it has no rules to
+/// answer with, and warns once when bevy_rapier sets up its step.
 #[derive(SystemParam)]
 pub struct CollisionRulesHooks<'w, 's> {
     contexts: Query<'w, 's, &'static CollisionRules>,
     links: Query<'w, 's, &'static RapierContextEntityLink>,
+    /// Never read: made when bevy_rapier sets up its step with these
+    /// hooks, it tells the plugin that they are in use, and warns when the
+    /// plugin is missing (`misuse.rs`).
+    _probe: Local<'s, HooksProbe>,
+}
+
+/// A pair that Rapier asks bevy_rapier's hooks about: the view that
+/// `filter_contact_pair` and `filter_intersection_pair` get, or the one
+/// that `modify_solver_contacts` gets. [`CollisionRulesHooks::project_asks`]
+/// takes either.
+pub trait HookedPair: sealed::Sealed {
+    /// The collider set Rapier is stepping and the pair's two colliders.
+    fn colliders(&self) -> (&ColliderSet, ColliderHandle, ColliderHandle);
+}
+
+impl HookedPair for PairFilterContextView<'_> {
+    fn colliders(&self) -> (&ColliderSet, ColliderHandle, ColliderHandle) {
+        (self.raw.colliders, self.raw.collider1, self.raw.collider2)
+    }
+}
+
+impl HookedPair for ContactModificationContextView<'_, '_> {
+    fn colliders(&self) -> (&ColliderSet, ColliderHandle, ColliderHandle) {
+        (self.raw.colliders, self.raw.collider1, self.raw.collider2)
+    }
+}
+
+/// Only bevy_rapier's two views are pairs the hooks are asked about.
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for bevy_rapier3d::pipeline::PairFilterContextView<'_> {}
+    impl Sealed for bevy_rapier3d::pipeline::ContactModificationContextView<'_, '_> {}
 }
 
 impl CollisionRulesHooks<'_, '_> {
@@ -116,12 +151,53 @@ impl CollisionRulesHooks<'_, '_> {
     /// `bit`: whether Rapier would have called the project's hooks for this
     /// pair without the rules. The rules hook colliders of their own, so a
     /// project's hooks are called for more pairs than they asked for.
-    pub fn project_asks(&self, context: &PairFilterContextView, bit: ActiveHooks) -> bool {
-        let raw = context.raw;
-        match self.rules_of(raw.colliders, raw.collider1) {
-            Some(rules) => rules.project_asks(raw.colliders, raw.collider1, raw.collider2, bit),
-            None => [raw.collider1, raw.collider2].into_iter().any(|c| {
-                raw.colliders
+    /// `context` is the view any of the three hooks gets:
+    ///
+    /// ```
+    /// use bevy::ecs::system::SystemParam;
+    /// use bevy::prelude::*;
+    /// use bevy_rapier3d::prelude::*;
+    /// use bevy_rapier3d::rapier::prelude::{ActiveHooks, ModifiableContacts};
+    /// use bevy_rapier_collision_rules::prelude::*;
+    ///
+    /// #[derive(SystemParam)]
+    /// struct SlipperyHooks<'w, 's> {
+    ///     rules: CollisionRulesHooks<'w, 's>,
+    /// }
+    ///
+    /// impl BevyPhysicsHooks for SlipperyHooks<'_, '_> {
+    ///     fn filter_contact_pair(&self, context: PairFilterContextView) -> Option<SolverFlags> {
+    ///         self.rules.filter_contact_pair(&context)
+    ///     }
+    ///     fn filter_intersection_pair(&self, context: PairFilterContextView) -> bool {
+    ///         self.rules.filter_intersection_pair(&context)
+    ///     }
+    ///     fn modify_solver_contacts(&self, mut context: ContactModificationContextView) {
+    ///         self.rules.modify_solver_contacts(&mut context);
+    ///         // The game's own contact change, only where its ActiveHooks ask.
+    ///         if self.rules.project_asks(&context, ActiveHooks::MODIFY_SOLVER_CONTACTS)
+    ///             && let ModifiableContacts::Rigid(manifold) = &mut context.raw.contacts
+    ///         {
+    ///             *manifold.friction = 0.0;
+    ///         }
+    ///     }
+    /// }
+    ///
+    /// let mut app = App::new();
+    /// app.add_plugins((
+    ///     MinimalPlugins,
+    ///     TransformPlugin,
+    ///     RapierPhysicsPlugin::<SlipperyHooks>::default(),
+    ///     CollisionRulesPlugin::default(),
+    /// ));
+    /// app.update();
+    /// ```
+    pub fn project_asks(&self, context: &impl HookedPair, bit: ActiveHooks) -> bool {
+        let (colliders, a, b) = context.colliders();
+        match self.rules_of(colliders, a) {
+            Some(rules) => rules.project_asks(colliders, a, b, bit),
+            None => [a, b].into_iter().any(|c| {
+                colliders
                     .get(c)
                     .is_some_and(|c| c.active_hooks().contains(bit))
             }),

@@ -50,6 +50,7 @@ mod edits;
 mod hierarchy;
 mod hooks;
 mod ledger;
+mod misuse;
 mod plugin;
 mod project;
 mod rules;
@@ -57,18 +58,37 @@ mod step;
 mod table;
 
 pub use components::{PersonalRule, RuleGroup, SpecificRules};
-pub use hooks::CollisionRulesHooks;
+pub use hooks::{CollisionRulesHooks, HookedPair};
 pub use plugin::{CollisionRulesPlugin, RulesSystems};
 pub use rules::CollisionRules;
 pub use table::{ContextRuleTable, RuleTable};
 
-/// The plugin, the components and the rules' own types.
+/// The main crate, for what is not re-exported here (its `dim3` module,
+/// its Rapier).
+pub use rapier_collision_rules;
+/// The main crate's types, so that a project that depends only on this
+/// crate (and bevy_rapier3d) can name everything [`CollisionRules`] and
+/// its [`RuleHooks`] take and give.
+pub use rapier_collision_rules::{
+    CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
+    ManifoldUpdate, Node, PairCreated, Problem, RecalculationPolicy, RuleError, RuleHooks, Stage,
+    StepStats, WorldRef,
+};
+
+/// The plugin, the components and the rules' own types. `Node` is left
+/// out: `bevy::prelude` has a `Node` of its own (the UI's) when Bevy's UI
+/// is on; it is `bevy_rapier_collision_rules::Node`.
 pub mod prelude {
     pub use super::{
-        CollisionRules, CollisionRulesHooks, CollisionRulesPlugin, ContextRuleTable, PersonalRule,
-        RuleGroup, RuleTable, SpecificRules,
-    };
-    pub use rapier_collision_rules::{
-        CollisionGroup, CollisionRule, ManifoldUpdate, RecalculationPolicy,
+        CollisionGroup, CollisionRule, CollisionRules, CollisionRulesHooks, CollisionRulesPlugin,
+        ContextRuleTable, ManifoldUpdate, PersonalRule, RecalculationPolicy, RuleGroup, RuleHooks,
+        RuleTable, SpecificRules, WorldRef,
     };
 }
+
+/// `docs/bevy.md`, whose Rust snippets `cargo test --doc` compiles and
+/// runs as this crate's doc tests: the guide's code is a user's, who
+/// depends on this crate, bevy and bevy_rapier3d.
+#[doc = include_str!("../../../docs/bevy.md")]
+#[cfg(doctest)]
+pub struct BevyGuide;

@@ -12,6 +12,7 @@ use bevy_rapier3d::prelude::{
 use super::edits::apply_rule_components;
 use super::hierarchy::follow_hierarchy;
 use super::ledger::Ledger;
+use super::misuse::check_hooks;
 use super::project::notice_project_settings;
 use super::step::{finish_contexts, prepare_contexts};
 use super::{CollisionRules, ContextRuleTable, PersonalRule, RuleGroup, RuleTable, SpecificRules};
@@ -31,7 +32,8 @@ pub enum RulesSystems {
 /// Adds the collision rules to a bevy_rapier app. Add it beside
 /// `RapierPhysicsPlugin::<CollisionRulesHooks>` (or a project's own hooks
 /// that ask [`CollisionRulesHooks`](super::CollisionRulesHooks)), in the
-/// same schedule.
+/// same schedule; without them there, it warns once at its first run
+/// (`docs/bevy.md`, "Half a set-up").
 ///
 /// ```
 /// use bevy::prelude::*;
@@ -131,6 +133,13 @@ impl Plugin for CollisionRulesPlugin {
             .chain()
             .in_set(RulesSystems::Prepare);
         app.add_systems(self.schedule, prepare);
+        // Warns once if bevy_rapier does not step with the rules' hooks here.
+        app.add_systems(
+            self.schedule,
+            check_hooks(self.schedule)
+                .run_if(run_once)
+                .in_set(RulesSystems::Prepare),
+        );
         app.add_systems(self.schedule, finish_contexts.in_set(RulesSystems::Finish));
     }
 }

@@ -10,8 +10,7 @@ use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet};
 /// given to entities with [`RuleGroup`](super::RuleGroup).
 ///
 /// ```
-/// use bevy_rapier_collision_rules::RuleTable;
-/// use rapier_collision_rules::CollisionRule;
+/// use bevy_rapier_collision_rules::{CollisionRule, RuleTable};
 ///
 /// let mut table = RuleTable::default();
 /// let (player, debris) = (table.create_group(), table.create_group());

@@ -5,6 +5,7 @@
 
 mod contexts;
 mod edits;
+mod elevator;
 mod hierarchy;
 mod outcomes;
 mod project;

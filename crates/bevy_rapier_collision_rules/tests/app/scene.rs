@@ -2,6 +2,7 @@
 
 use std::time::Duration;
 
+use bevy::app::Plugins;
 use bevy::ecs::system::SystemParamItem;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
@@ -11,7 +12,6 @@ use bevy_rapier3d::plugin::context::{
     DefaultRapierContext, RapierContextColliders, RapierContextSimulation, RapierRigidBodySet,
 };
 use bevy_rapier3d::prelude::*;
-use rapier_collision_rules::WorldRef;
 
 pub const DT: f32 = 1.0 / 60.0;
 
@@ -40,10 +40,19 @@ impl Sim {
     /// An app with bevy_rapier's and the rules' plugins as given (for
     /// another schedule).
     pub fn with_plugins(rapier: impl Plugin, rules: CollisionRulesPlugin) -> Sim {
+        Sim::from_plugins((rapier, rules))
+    }
+
+    /// Plain bevy_rapier without the rules, the reference of what the
+    /// rules must leave alone.
+    pub fn plain() -> Sim {
+        Sim::from_plugins(RapierPhysicsPlugin::<()>::default())
+    }
+
+    fn from_plugins<M>(physics: impl Plugins<M>) -> Sim {
         let mut app = App::new();
         app.add_plugins((MinimalPlugins, TransformPlugin))
-            .add_plugins(rapier)
-            .add_plugins(rules)
+            .add_plugins(physics)
             .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
                 DT,
             )));

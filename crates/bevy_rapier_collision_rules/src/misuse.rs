@@ -1,0 +1,81 @@
+//! Half of the set-up is loud: the rules need both `CollisionRulesPlugin`
+//! and bevy_rapier stepping with `CollisionRulesHooks` (directly or inside
+//! a project's own hooks), and each without the other fails silently. Each
+//! case is warned about once per app, through the `log` facade that Bevy's
+//! `LogPlugin` (and bevy_rapier's own messages) go through (`docs/bevy.md`,
+//! "Half a set-up").
+
+use bevy::ecs::intern::Interned;
+use bevy::ecs::schedule::ScheduleLabel;
+use bevy::prelude::*;
+
+use super::ledger::Ledger;
+
+/// Present once a system whose parameters include `CollisionRulesHooks`
+/// has been initialized: in practice bevy_rapier's step, whose hooks are
+/// the only place the parameter is meant for.
+#[derive(Resource)]
+pub(crate) struct HooksInUse;
+
+/// A `Local` of `CollisionRulesHooks`: Bevy makes it from the world when it
+/// initializes the system that takes the hooks, which is when bevy_rapier's
+/// step is set up (at the first run of its schedule, after every plugin was
+/// built). That is the one moment the hooks can see the world: they note
+/// that they are in use, and warn if `CollisionRulesPlugin` is missing.
+#[doc(hidden)]
+pub struct HooksProbe;
+
+impl FromWorld for HooksProbe {
+    fn from_world(world: &mut World) -> Self {
+        if !world.contains_resource::<HooksInUse>() {
+            world.insert_resource(HooksInUse);
+            // The plugin's own book, inserted when the plugin is built.
+            if !world.contains_resource::<Ledger>() {
+                log::warn!("{}", without_plugin());
+            }
+        }
+        HooksProbe
+    }
+}
+
+/// The warning for `CollisionRulesHooks` stepping without the plugin.
+pub(crate) fn without_plugin() -> &'static str {
+    "CollisionRulesHooks is in use (bevy_rapier steps with it), but \
+     CollisionRulesPlugin was not added: no physics context has rules, so every RuleGroup, \
+     PersonalRule, SpecificRules and the RuleTable are ignored. Fix: add \
+     CollisionRulesPlugin::default() to the app, in bevy_rapier's schedule \
+     (`.in_fixed_schedule()` or `.in_schedule(label)` if bevy_rapier runs \
+     in another one)."
+}
+
+/// The warning for the plugin without `CollisionRulesHooks` in bevy_rapier's
+/// step in the plugin's schedule: other hooks, or another schedule.
+pub(crate) fn without_hooks(schedule: Interned<dyn ScheduleLabel>) -> String {
+    format!(
+        "CollisionRulesPlugin runs in {schedule:?}, but bevy_rapier does not \
+         step with CollisionRulesHooks there. If it steps with other hooks \
+         (RapierPhysicsPlugin::<()>, or a project's hooks without \
+         CollisionRulesHooks), the rules the plugin turns into Rapier's \
+         collision and solver groups still hold and every rule left to the \
+         hooks (NoContacts, most NoResponse and specific rules, \
+         ManifoldUpdate, live-pair overrides) is silently dropped; if it \
+         steps in another schedule, the rules are prepared out of step with \
+         its steps. Fix: RapierPhysicsPlugin::<CollisionRulesHooks>, or a \
+         project's own hooks with a CollisionRulesHooks field that they ask \
+         first, in the same schedule as CollisionRulesPlugin."
+    )
+}
+
+/// Runs once, at the first run of the plugin's systems: by then Bevy has
+/// initialized every system of the schedule, so if bevy_rapier steps there
+/// with hooks that include `CollisionRulesHooks`, [`HooksInUse`] is
+/// present.
+pub(crate) fn check_hooks(
+    schedule: Interned<dyn ScheduleLabel>,
+) -> impl FnMut(Option<Res<HooksInUse>>) {
+    move |in_use| {
+        if in_use.is_none() {
+            log::warn!("{}", without_hooks(schedule));
+        }
+    }
+}

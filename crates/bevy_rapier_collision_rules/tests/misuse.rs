@@ -1,0 +1,246 @@
+//! Half a set-up is loud (`docs/bevy.md`, "Half a set-up"): the plugin
+//! without the rules' hooks in bevy_rapier's step, and the hooks without
+//! the plugin, each warn once through the `log` facade; whole set-ups and
+//! plain bevy_rapier do not.
+//!
+//! A binary of its own: the test installs the process's one `log` logger,
+//! which records what this crate logs, and the tests take turns so that
+//! each reads only its own app's records.
+
+use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::time::Duration;
+
+use CollisionRule::*;
+use bevy::app::Plugins;
+use bevy::ecs::system::SystemParam;
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_rapier_collision_rules::prelude::*;
+use bevy_rapier3d::prelude::*;
+
+/// Every warning this crate logged since the current test began.
+static WARNINGS: Mutex<Vec<String>> = Mutex::new(Vec::new());
+/// Held by each test for its whole run.
+static TURN: Mutex<()> = Mutex::new(());
+
+struct Recorder;
+
+impl log::Log for Recorder {
+    fn enabled(&self, metadata: &log::Metadata) -> bool {
+        metadata.target().starts_with("bevy_rapier_collision_rules")
+    }
+
+    fn log(&self, record: &log::Record) {
+        if self.enabled(record.metadata()) && record.level() == log::Level::Warn {
+            let mut warnings = WARNINGS.lock().unwrap_or_else(PoisonError::into_inner);
+            warnings.push(record.args().to_string());
+        }
+    }
+
+    fn flush(&self) {}
+}
+
+static RECORDER: Recorder = Recorder;
+
+/// This test's turn, with the warnings of earlier tests forgotten.
+fn turn() -> MutexGuard<'static, ()> {
+    let turn = TURN.lock().unwrap_or_else(PoisonError::into_inner);
+    // The first test installs the logger; later ones find it installed.
+    if log::set_logger(&RECORDER).is_ok() {
+        log::set_max_level(log::LevelFilter::Warn);
+    }
+    WARNINGS
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .clear();
+    turn
+}
+
+fn warnings() -> Vec<String> {
+    WARNINGS
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .clone()
+}
+
+/// A headless app with `physics`, stepped by hand for 30 frames of 1/60 s,
+/// a ball over a floor whose rule with it is `NoContacts` (a rule only the
+/// hooks can keep). Returns the ball's height.
+fn run<M>(physics: impl Plugins<M>) -> f32 {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin))
+        .add_plugins(physics)
+        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
+            1.0 / 60.0,
+        )));
+    app.finish();
+    app.cleanup();
+    let floor = app
+        .world_mut()
+        .spawn((
+            Transform::from_xyz(0.0, -0.5, 0.0),
+            Collider::cuboid(5.0, 0.5, 5.0),
+        ))
+        .id();
+    let ball = app
+        .world_mut()
+        .spawn((
+            Transform::from_xyz(0.0, 0.5, 0.0),
+            RigidBody::Dynamic,
+            Collider::ball(0.25),
+            SpecificRules::new().with(floor, NoContacts),
+        ))
+        .id();
+    for _ in 0..60 {
+        app.update();
+    }
+    app.world().get::<Transform>(ball).unwrap().translation.y
+}
+
+/// Whether a ball of radius 0.25 rests on the floor.
+fn rests(y: f32) -> bool {
+    (0.2..0.3).contains(&y)
+}
+
+#[test]
+fn the_plugin_with_plain_bevy_rapier_warns_once_and_the_hooked_rule_is_dropped() {
+    let _turn = turn();
+    let y = run((
+        RapierPhysicsPlugin::<()>::default(),
+        CollisionRulesPlugin::default(),
+    ));
+    let warnings = warnings();
+    println!("y = {y}, warnings: {warnings:#?}");
+    assert_eq!(warnings.len(), 1, "one warning in 60 frames: {warnings:#?}");
+    let warning = &warnings[0];
+    assert!(
+        warning.contains("does not step with CollisionRulesHooks there")
+            && warning.contains("RapierPhysicsPlugin::<CollisionRulesHooks>"),
+        "names the missing hooks and the fix: {warning}"
+    );
+    // What the warning is about: NoContacts is the hooks' to keep, so
+    // without them the ball lands.
+    assert!(rests(y), "the NoContacts rule was dropped: y = {y}");
+}
+
+/// A project's own hooks that do not ask the rules.
+#[derive(SystemParam)]
+struct OwnHooks<'w, 's> {
+    names: Query<'w, 's, &'static Name>,
+}
+
+impl BevyPhysicsHooks for OwnHooks<'_, '_> {
+    fn filter_contact_pair(&self, context: PairFilterContextView) -> Option<SolverFlags> {
+        let _ = self.names.get(context.collider1());
+        Some(SolverFlags::COMPUTE_RIGID_IMPULSES)
+    }
+}
+
+#[test]
+fn the_plugin_with_a_projects_hooks_that_leave_the_rules_out_warns_once() {
+    let _turn = turn();
+    let y = run((
+        RapierPhysicsPlugin::<OwnHooks>::default(),
+        CollisionRulesPlugin::default(),
+    ));
+    let warnings = warnings();
+    println!("y = {y}, warnings: {warnings:#?}");
+    assert_eq!(warnings.len(), 1, "{warnings:#?}");
+    assert!(
+        warnings[0].contains("CollisionRulesHooks field"),
+        "{}",
+        warnings[0]
+    );
+}
+
+#[test]
+fn the_hooks_without_the_plugin_warn_once() {
+    let _turn = turn();
+    let y = run(RapierPhysicsPlugin::<CollisionRulesHooks>::default());
+    let warnings = warnings();
+    println!("y = {y}, warnings: {warnings:#?}");
+    assert_eq!(warnings.len(), 1, "one warning in 60 frames: {warnings:#?}");
+    let warning = &warnings[0];
+    assert!(
+        warning.contains("CollisionRulesPlugin was not added")
+            && warning.contains("CollisionRulesPlugin::default()"),
+        "names the missing plugin and the fix: {warning}"
+    );
+    assert!(rests(y), "no rule without the plugin: y = {y}");
+}
+
+#[test]
+fn the_plugin_outside_bevy_rapiers_schedule_warns_once() {
+    let _turn = turn();
+    // bevy_rapier in FixedUpdate, which does not run in the first frame;
+    // the rules in PostUpdate, which does. The hooks do answer in
+    // FixedUpdate, but the rules prepare after its steps, not before.
+    let y = run((
+        RapierPhysicsPlugin::<CollisionRulesHooks>::default().in_fixed_schedule(),
+        CollisionRulesPlugin::default(),
+    ));
+    let warnings = warnings();
+    println!("y = {y}, warnings: {warnings:#?}");
+    assert_eq!(warnings.len(), 1, "{warnings:#?}");
+    assert!(
+        warnings[0].contains("CollisionRulesPlugin runs in PostUpdate")
+            && warnings[0].contains("in the same schedule as CollisionRulesPlugin"),
+        "{}",
+        warnings[0]
+    );
+}
+
+/// A project's own hooks that ask the rules first.
+#[derive(SystemParam)]
+struct GameHooks<'w, 's> {
+    rules: CollisionRulesHooks<'w, 's>,
+}
+
+impl BevyPhysicsHooks for GameHooks<'_, '_> {
+    fn filter_contact_pair(&self, context: PairFilterContextView) -> Option<SolverFlags> {
+        self.rules.filter_contact_pair(&context)
+    }
+
+    fn filter_intersection_pair(&self, context: PairFilterContextView) -> bool {
+        self.rules.filter_intersection_pair(&context)
+    }
+
+    fn modify_solver_contacts(&self, mut context: ContactModificationContextView) {
+        self.rules.modify_solver_contacts(&mut context);
+    }
+}
+
+#[test]
+fn whole_set_ups_and_plain_bevy_rapier_do_not_warn() {
+    let _turn = turn();
+    let whole = [
+        (
+            "the rules' hooks",
+            run((
+                RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
+                CollisionRulesPlugin::default(),
+            )),
+        ),
+        (
+            "a project's hooks that ask the rules",
+            run((
+                RapierPhysicsPlugin::<GameHooks>::default(),
+                CollisionRulesPlugin::default(),
+            )),
+        ),
+        (
+            "both in the fixed schedule",
+            run((
+                RapierPhysicsPlugin::<CollisionRulesHooks>::default().in_fixed_schedule(),
+                CollisionRulesPlugin::default().in_fixed_schedule(),
+            )),
+        ),
+    ];
+    for (case, y) in whole {
+        assert!(y < -1.0, "{case}: NoContacts holds, y = {y}");
+    }
+    let plain = run(RapierPhysicsPlugin::<()>::default());
+    assert!(rests(plain), "plain bevy_rapier: y = {plain}");
+    let warnings = warnings();
+    assert!(warnings.is_empty(), "{warnings:#?}");
+}

@@ -96,7 +96,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     println!(
         "{} of {} colliders needed the hook",
-        hooks.hooked_count(),
+        hooks.stats().hooked_colliders,
         world.colliders.len()
     );
     Ok(())

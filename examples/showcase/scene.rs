@@ -400,7 +400,7 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "(events: Started/Stopped for the actor's pair; {} colliders, {} hooked)",
         world.colliders.len(),
-        hooks.hooked_count()
+        hooks.stats().hooked_colliders
     );
 
     let svg = view::render(&frames, LABELS);

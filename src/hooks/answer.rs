@@ -25,20 +25,20 @@ impl RuleHooks {
         a: ColliderHandle,
         b: ColliderHandle,
     ) -> CollisionRule {
-        let mut rule = match &self.calculator {
+        let mut rule = match &self.decide.calculator {
             Some(calculator) => {
                 let context = CalculatorContext {
                     collider1: a,
                     collider2: b,
                     bodies,
                     colliders,
-                    rules: &self.rules,
+                    rules: &self.decide.rules,
                 };
                 special_case(BodyKinds::of(bodies, colliders, a, b), calculator(&context))
             }
             None => self.resolve(bodies, colliders, a, b),
         };
-        if let Some(callback) = &self.on_created {
+        if let Some(callback) = &self.decide.on_created {
             let created = PairCreated {
                 collider1: a,
                 collider2: b,
@@ -65,7 +65,7 @@ impl RuleHooks {
         a: ColliderHandle,
         b: ColliderHandle,
     ) -> CollisionRule {
-        let why = self.rules.explain(bodies, colliders, a, b);
+        let why = self.decide.rules.explain(bodies, colliders, a, b);
         if why.rule != CollisionRule::NoPair || !why.by_kinematic_entry() {
             return why.rule;
         }
@@ -79,7 +79,7 @@ impl RuleHooks {
                 .own_settings(a, ca)
                 .types_allow(self.own_settings(b, cb), types)
         {
-            special_case(kinds, self.rules.default_rule())
+            special_case(kinds, self.decide.rules.default_rule())
         } else {
             why.rule
         }
@@ -105,7 +105,7 @@ impl RuleHooks {
             return rule;
         }
         // Two non-dynamic bodies: the rule may rest on the project's types.
-        let typed = kinds.neither_dynamic() && self.calculator.is_none() && self.on_created.is_none();
+        let typed = kinds.neither_dynamic() && self.decide.calculator.is_none() && self.decide.on_created.is_none();
         if kinds != state.kinds || typed {
             self.calculate(bodies, colliders, a, b)
         } else {
@@ -123,7 +123,7 @@ impl RuleHooks {
     /// level's tiles, keep the plain look-up.
     #[inline]
     fn widened_pair(&self, context: &PairFilterContext<'_>) -> bool {
-        if self.calculator.is_some() || self.on_created.is_some() {
+        if self.decide.calculator.is_some() || self.decide.on_created.is_some() {
             return false;
         }
         let widened = |c: ColliderHandle| {
@@ -138,7 +138,7 @@ impl RuleHooks {
     /// Whether a tracked pair's rule follows what it rests on (see
     /// [`rule_now`](Self::rule_now)).
     fn recomputes(&self, state: &PairState) -> bool {
-        state.overridden.is_none() && self.policy != RecalculationPolicy::Manual
+        state.overridden.is_none() && self.decide.policy != RecalculationPolicy::Manual
     }
 
     /// The hot path found `state` computed for other body types than the
@@ -157,7 +157,7 @@ impl RuleHooks {
             let (a, b) = key.colliders();
             let rule = self.calculate(context.bodies, context.colliders, a, b);
             self.pending()
-                .insert(key, PairState::new(rule, self.step, kinds, state.parts));
+                .insert(key, PairState::new(rule, self.boundary.step, kinds, state.parts));
             rule
         });
         let again = self.answered_by_ccd(context, state, rule, state.manifold);
@@ -185,7 +185,7 @@ impl RuleHooks {
         let rule = self.calculate(context.bodies, context.colliders, a, b);
         let kinds = kinds_in(context, key);
         let parts = key.made_of_parts(context.colliders);
-        let state = PairState::new(rule, self.step, kinds, parts);
+        let state = PairState::new(rule, self.boundary.step, kinds, parts);
         // Later answers in this step at the same poses are the CCD's.
         state.poses.store(poses(context), Ordering::Relaxed);
         self.pending().entry(key).or_insert(state);
@@ -212,9 +212,9 @@ impl RuleHooks {
         manifold: ManifoldUpdate,
     ) -> bool {
         if computes(rule, manifold) && !rule.responds() {
-            state.answered_by_ccd(self.step, poses(context))
+            state.answered_by_ccd(self.boundary.step, poses(context))
         } else {
-            state.answered_again(self.step)
+            state.answered_again(self.boundary.step)
         }
     }
 
@@ -223,8 +223,8 @@ impl RuleHooks {
     /// only read it.
     #[inline]
     fn answering(&self) {
-        if self.prepared && !self.stepped.load(Ordering::Relaxed) {
-            self.stepped.store(true, Ordering::Relaxed);
+        if self.boundary.prepared && !self.boundary.stepped.load(Ordering::Relaxed) {
+            self.boundary.stepped.store(true, Ordering::Relaxed);
         }
     }
 
@@ -314,7 +314,7 @@ impl RuleHooks {
     /// own hook bits.
     #[inline]
     fn decides(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
-        let hooked = |c| self.plan.colliders.get(c).is_some_and(|p| p.hooked());
+        let hooked = |c| self.planned.plan.colliders.get(c).is_some_and(|p| p.hooked());
         hooked(a) || hooked(b)
     }
 
@@ -328,7 +328,7 @@ impl RuleHooks {
         b: ColliderHandle,
         bit: ActiveHooks,
     ) -> Option<&dyn PhysicsHooks> {
-        let user = self.user.as_deref()?;
+        let user = self.decide.user.as_deref()?;
         self.project_asks(colliders, a, b, bit)
             .then_some(user as &dyn PhysicsHooks)
     }
@@ -393,7 +393,7 @@ impl RuleHooks {
         };
         let subshapes = (rigid.manifold.subshape1, rigid.manifold.subshape2);
         let mut frozen = state.frozen.lock().unwrap_or_else(PoisonError::into_inner);
-        let (step, manifolds) = frozen.get_or_insert_with(|| (self.step, Vec::new()));
+        let (step, manifolds) = frozen.get_or_insert_with(|| (self.boundary.step, Vec::new()));
         match manifolds.iter().find(|m| m.subshapes() == subshapes) {
             Some(manifold) => {
                 let thawed = super::pair_state::thaw(bodies, body1, body2, manifold, rigid.normal);
@@ -402,7 +402,7 @@ impl RuleHooks {
             }
             // Manifolds are frozen in the step the setting took effect; one
             // that appears later had no contacts then.
-            None if *step == self.step => {
+            None if *step == self.boundary.step => {
                 let manifold = super::pair_state::freeze(
                     bodies,
                     body1,

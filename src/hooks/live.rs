@@ -1,4 +1,4 @@
-//! The live-pair API (`docs/semantics.md`, "Live pairs"): each pair's
+//! The live-pair API (`docs/semantics.md`, "Decisions about live pairs"): each pair's
 //! rule, overrides, manifold settings and forced recalculation.
 //!
 //! Rapier holds every pair; the hooks keep state only for the pairs they
@@ -125,8 +125,9 @@ impl RuleHooks {
 
     /// The hooked live pairs as of the last step, with their rules: the
     /// hooks' own table, which the crate's tests compare with Rapier's graph.
-    /// Not part of the API: [`pairs`](Self::pairs) answers every pair.
-    #[doc(hidden)]
+    /// Not part of the API (feature `test-oracle`): [`pairs`](Self::pairs)
+    /// answers every pair.
+    #[cfg(feature = "test-oracle")]
     pub fn hooked_pairs(
         &self,
     ) -> impl Iterator<Item = (ColliderHandle, ColliderHandle, CollisionRule)> + '_ {
@@ -238,7 +239,7 @@ impl RuleHooks {
             return false;
         };
         edit(state);
-        self.replan = true;
+        self.queued.replan = true;
         self.wake_pair(a, b);
         true
     }
@@ -264,7 +265,7 @@ impl RuleHooks {
     /// changed) when a collider of the pair is made of parts: a triangle
     /// mesh, polyline, height field, voxel set or compound. Rapier keeps
     /// one manifold per touching part, and parts come and go as the bodies
-    /// move, so frozen contacts could not be kept (`docs/semantics.md`,
+    /// move, so frozen contacts could not be kept (`docs/architecture.md`,
     /// "Manifold settings").
     pub fn set_manifold_update<'w>(
         &mut self,
@@ -291,7 +292,7 @@ impl RuleHooks {
         if update == ManifoldUpdate::Never && parts {
             return false;
         }
-        self.unsettled |= update == ManifoldUpdate::Never;
+        self.boundary.unsettled |= update == ManifoldUpdate::Never;
         self.edit_pair(a, b, native, |state| {
             state.manifold = update;
             *state
@@ -321,7 +322,7 @@ impl RuleHooks {
     /// its descendants (the design's `ForceCollisionRuleRecalculation`),
     /// dropping their overrides. A pair that becomes `NoPair` stops being live.
     pub fn force_recalculation(&mut self, node: impl Into<Node>) {
-        self.forced.push(node.into());
+        self.queued.forced.push(node.into());
     }
 
     /// [`rapier_rule`](Self::rapier_rule), with what a new entry needs.
@@ -365,7 +366,7 @@ impl RuleHooks {
         let key = PairKey::new(a, b);
         if self.pairs.get(key).is_none() {
             let native = native.filter(|native| native.rule != CollisionRule::NoPair)?;
-            let state = PairState::new(native.rule, self.step, native.kinds, native.parts);
+            let state = PairState::new(native.rule, self.boundary.step, native.kinds, native.parts);
             self.pairs.insert(key, state);
         }
         self.pairs
@@ -375,6 +376,6 @@ impl RuleHooks {
 
     /// Wakes, before the next step, the bodies of `a` and `b`.
     pub(super) fn wake_pair(&mut self, a: ColliderHandle, b: ColliderHandle) {
-        self.wake_colliders.extend([a, b]);
+        self.queued.wake_colliders.extend([a, b]);
     }
 }

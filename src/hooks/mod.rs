@@ -130,17 +130,38 @@ type CreatedCallback = Box<dyn Fn(&PairCreated<'_>) -> Option<CollisionRule> + S
 /// assert!(paired, "the ghost and the floor formed a live NoResponse pair");
 /// ```
 pub struct RuleHooks {
-    rules: CollisionRuleSet,
-    policy: RecalculationPolicy,
+    /// What decides each pair.
+    decide: Deciders,
     /// The hooked pairs: every pair with a hooked collider that Rapier holds.
     pairs: PairTable,
     /// Pairs first seen during the current step, admitted after it.
     pending: Mutex<HashMap<PairKey, PairState>>,
+    /// Where the hooks stand between `prepare` and `after_step`.
+    boundary: Boundary,
+    /// The work queued for the next step.
+    queued: Queued,
+    /// The plan, what the hooks watch, and what they wrote into Rapier.
+    planned: Planned,
+    /// What the last step did.
+    stats: StepStats,
+}
+
+/// What decides each pair: the rules, the policy, the code a project
+/// registered.
+struct Deciders {
+    rules: CollisionRuleSet,
+    policy: RecalculationPolicy,
     calculator: Option<Calculator>,
     on_created: Option<CreatedCallback>,
+    /// The project's own hooks (see [`RuleHooks::set_user_hooks`]).
+    user: Option<Box<dyn PhysicsHooks + Send + Sync>>,
+}
+
+/// The step boundary (`docs/architecture.md`, "The step boundary").
+struct Boundary {
     /// Counts steps; the hook compares it to tell the CCD's second answer.
     step: u64,
-    /// `prepare` ran and `after_step` has not yet (the step boundary).
+    /// `prepare` ran and `after_step` has not yet.
     prepared: bool,
     /// The hook answered since the last `prepare`.
     stepped: AtomicBool,
@@ -148,23 +169,30 @@ pub struct RuleHooks {
     unsettled: bool,
     /// One did at `prepare`: `after_step` checks that it was settled.
     owe_freeze: bool,
-    /// The world's census after the last step (see `upkeep::census`): a
+    /// The world's census after the last step (see `world::census`): a
     /// different one means the project removed, added or moved objects,
     /// whose pairs the after-step sweep must look at even if no body moved.
     census: [usize; 6],
+    /// A hooked pair the hook answered "no contacts" or "no response" in
+    /// the last step, with its rule: if Rapier's graph shows another answer
+    /// before the next step, Rapier stepped without the hooks.
+    witness: Option<(PairKey, CollisionRule)>,
+    /// Whether stepping without the hooks was reported (once).
+    reported_unhooked: bool,
+}
+
+/// The work queued for the next step.
+struct Queued {
+    /// Nodes whose pairs `force_recalculation` asked for.
     forced: Vec<Node>,
     /// A calculator or callback changed: every pair is to be recalculated.
     recalculate_all: bool,
+    /// Bodies to wake before the next step.
     to_wake: Vec<RigidBodyHandle>,
     /// Colliders whose bodies are to be woken before the next step.
     wake_colliders: Vec<ColliderHandle>,
-    /// Colliders given the contact-modification flag for `ManifoldUpdate::Never`.
-    modifying: HashSet<ColliderHandle>,
     /// Colliders to plan again before the next step (a partial plan).
     candidates: Vec<ColliderHandle>,
-    /// Whether the planner may leave colliders unhooked (see `native.rs`).
-    planner: bool,
-    plan: Plan,
     /// Something the plan depends on changed: plan again before the next step.
     replan: bool,
     /// Colliders whose groups the last plan changed. Rapier drops and finds
@@ -174,33 +202,34 @@ pub struct RuleHooks {
     /// pairs are looked up in Rapier's graph (a pair Rapier made without
     /// asking the hook gets its rule; one it dropped is forgotten).
     touched: Vec<ColliderHandle>,
+}
+
+/// The plan and what it was written into.
+struct Planned {
+    /// Whether the planner may leave colliders unhooked (see
+    /// [`RuleHooks::set_planner`]).
+    enabled: bool,
+    /// Test oracle: look at every collider and plan everything every step.
+    exhaustive: bool,
+    plan: Plan,
     /// The colliders and bodies the hooks watch.
     roster: Roster,
-    stats: StepStats,
     /// How many colliders the last plan hooked.
     hooked: usize,
     /// The colliders whose settings differ from the project's: what the
     /// project set and what the crate wrote.
     written: HandleMap<ColliderHandle, Written>,
-    /// Test oracle: look at every collider and plan everything every step.
-    exhaustive: bool,
-    /// The project's own hooks (see [`RuleHooks::set_user_hooks`]).
-    user: Option<Box<dyn PhysicsHooks + Send + Sync>>,
-    /// A hooked pair the hook answered "no contacts" or "no response" in
-    /// the last step, with its rule: if Rapier's graph shows another answer
-    /// before the next step, Rapier stepped without the hooks.
-    witness: Option<(PairKey, CollisionRule)>,
-    /// Whether stepping without the hooks was reported (once).
-    reported_unhooked: bool,
+    /// Colliders given the contact-modification flag for `ManifoldUpdate::Never`.
+    modifying: HashSet<ColliderHandle>,
 }
 
 impl std::fmt::Debug for RuleHooks {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("RuleHooks")
-            .field("policy", &self.policy)
-            .field("hooked_pairs", &self.hooked_pairs().count())
-            .field("calculator", &self.calculator.is_some())
-            .field("on_created", &self.on_created.is_some())
+            .field("policy", &self.decide.policy)
+            .field("tracked_pairs", &self.pairs.len())
+            .field("calculator", &self.decide.calculator.is_some())
+            .field("on_created", &self.decide.on_created.is_some())
             .finish_non_exhaustive()
     }
 }
@@ -216,44 +245,52 @@ impl RuleHooks {
     /// Hooks that apply `rules` to every collider of the worlds they step.
     pub fn new(rules: CollisionRuleSet) -> RuleHooks {
         RuleHooks {
-            rules,
-            policy: RecalculationPolicy::default(),
+            decide: Deciders {
+                rules,
+                policy: RecalculationPolicy::default(),
+                calculator: None,
+                on_created: None,
+                user: None,
+            },
             pairs: PairTable::default(),
             pending: Mutex::new(HashMap::new()),
-            calculator: None,
-            on_created: None,
-            step: 0,
-            prepared: false,
-            stepped: AtomicBool::new(false),
-            unsettled: false,
-            owe_freeze: false,
-            census: [0; 6],
-            forced: Vec::new(),
-            recalculate_all: false,
-            to_wake: Vec::new(),
-            wake_colliders: Vec::new(),
-            modifying: HashSet::new(),
-            candidates: Vec::new(),
-            planner: true,
-            plan: Plan::default(),
-            replan: true,
-            regrouped: HashSet::new(),
-            touched: Vec::new(),
-            roster: Roster::default(),
+            boundary: Boundary {
+                step: 0,
+                prepared: false,
+                stepped: AtomicBool::new(false),
+                unsettled: false,
+                owe_freeze: false,
+                census: [0; 6],
+                witness: None,
+                reported_unhooked: false,
+            },
+            queued: Queued {
+                forced: Vec::new(),
+                recalculate_all: false,
+                to_wake: Vec::new(),
+                wake_colliders: Vec::new(),
+                candidates: Vec::new(),
+                replan: true,
+                regrouped: HashSet::new(),
+                touched: Vec::new(),
+            },
+            planned: Planned {
+                enabled: true,
+                exhaustive: false,
+                plan: Plan::default(),
+                roster: Roster::default(),
+                hooked: 0,
+                written: HandleMap::default(),
+                modifying: HashSet::new(),
+            },
             stats: StepStats::default(),
-            hooked: 0,
-            written: HandleMap::default(),
-            exhaustive: false,
-            user: None,
-            witness: None,
-            reported_unhooked: false,
         }
     }
 
     /// The rules.
     #[must_use]
     pub fn rules(&self) -> &CollisionRuleSet {
-        &self.rules
+        &self.decide.rules
     }
 
     /// The rules, to edit. Under [`RecalculationPolicy::OnChange`] the live
@@ -262,13 +299,13 @@ impl RuleHooks {
     /// (`*hooks.rules_mut() = loaded`): it comes marked as entirely changed,
     /// so every live pair and the plan follow it at the next step.
     pub fn rules_mut(&mut self) -> &mut CollisionRuleSet {
-        &mut self.rules
+        &mut self.decide.rules
     }
 
     /// Chooses when live pairs follow rule edits (default `OnChange`).
     pub fn set_policy(&mut self, policy: RecalculationPolicy) {
-        self.policy = policy;
-        self.replan = true;
+        self.decide.policy = policy;
+        self.queued.replan = true;
     }
 
     /// Turns the planner on (the default) or off. On, colliders whose pairs
@@ -281,27 +318,27 @@ impl RuleHooks {
     ///
     /// The crate never writes over a project's own settings: it combines
     /// its plan with each collider's collision groups, solver groups,
-    /// collision types and hook bits (`docs/semantics.md`, section 6), and a
+    /// collision types and hook bits (`docs/semantics.md`, "The project's own settings"), and a
     /// collider the rules no longer reach gets the project's settings back.
     pub fn set_planner(&mut self, enabled: bool) {
-        self.planner = enabled;
-        self.replan = true;
+        self.planned.enabled = enabled;
+        self.queued.replan = true;
     }
 
     /// The tests' oracle: with `true`, every step looks at every collider,
     /// rebuilds the roster from the rule set and plans everything, as the
     /// hooks did before they followed what the rules reach. Slow; for
     /// comparing against the incremental upkeep.
-    #[doc(hidden)]
+    #[cfg(feature = "test-oracle")]
     pub fn set_exhaustive(&mut self, exhaustive: bool) {
-        self.exhaustive = exhaustive;
+        self.planned.exhaustive = exhaustive;
     }
 
     /// The project's own settings of `collider`: what it has now, except
     /// where the crate wrote and the project has not changed them since.
     pub(crate) fn own_settings(&self, handle: ColliderHandle, collider: &Collider) -> Settings {
         let now = Settings::of(collider);
-        self.written
+        self.planned.written
             .get(handle)
             .map_or(now, |written| written.own_as_of(now))
     }
@@ -309,21 +346,7 @@ impl RuleHooks {
     /// Whether the planner is on (see [`set_planner`](Self::set_planner)).
     #[must_use]
     pub fn planner(&self) -> bool {
-        self.planner
-    }
-
-    /// How many pairs the hooks keep state for (hooked live pairs, `NoPair`
-    /// pairs the hook refuses, overrides): a diagnostic, bounded by the
-    /// number of pairs in Rapier's narrow phase that have a hooked collider.
-    #[must_use]
-    pub fn tracked_pairs(&self) -> usize {
-        self.pairs.len()
-    }
-
-    /// How many colliders carry the hook flag as of the last plan.
-    #[must_use]
-    pub fn hooked_count(&self) -> usize {
-        self.hooked
+        self.planned.enabled
     }
 
     /// What the last step did and cost: hooked and watched colliders, hook
@@ -338,7 +361,7 @@ impl RuleHooks {
     /// The current recalculation policy.
     #[must_use]
     pub fn policy(&self) -> RecalculationPolicy {
-        self.policy
+        self.decide.policy
     }
 
     /// Replaces the default calculation (specific, personal, group,
@@ -359,21 +382,21 @@ impl RuleHooks {
         &mut self,
         calculator: impl Fn(&CalculatorContext<'_>) -> CollisionRule + Send + Sync + 'static,
     ) {
-        self.calculator = Some(Box::new(calculator));
+        self.decide.calculator = Some(Box::new(calculator));
         self.decision_changed();
     }
 
     /// Goes back to the default calculation.
     pub fn remove_calculator(&mut self) {
-        self.calculator = None;
+        self.decide.calculator = None;
         self.decision_changed();
     }
 
     /// Who decides pairs changed: every pair is recalculated, every collider
     /// planned again (calculators and callbacks need every pair hooked).
     fn decision_changed(&mut self) {
-        self.recalculate_all = true;
-        self.replan = true;
+        self.queued.recalculate_all = true;
+        self.queued.replan = true;
     }
 
     /// Registers the pair-created callback (the BEPU design's immediate
@@ -395,13 +418,13 @@ impl RuleHooks {
         &mut self,
         callback: impl Fn(&PairCreated<'_>) -> Option<CollisionRule> + Send + Sync + 'static,
     ) {
-        self.on_created = Some(Box::new(callback));
+        self.decide.on_created = Some(Box::new(callback));
         self.decision_changed();
     }
 
     /// Removes the pair-created callback.
     pub fn remove_pair_created(&mut self) {
-        self.on_created = None;
+        self.decide.on_created = None;
         self.decision_changed();
     }
 
@@ -461,7 +484,7 @@ impl RuleHooks {
     /// assert!((2.2..2.5).contains(&y(rider)), "the box landed on the platform: y = {}", y(rider));
     /// ```
     pub fn set_user_hooks(&mut self, hooks: impl PhysicsHooks + Send + Sync + 'static) {
-        self.user = Some(Box::new(hooks));
+        self.decide.user = Some(Box::new(hooks));
     }
 
     /// Tells the hooks that the project changed, through Rapier, the
@@ -475,10 +498,10 @@ impl RuleHooks {
     /// next step reads every collider's settings, plans again and
     /// recalculates the hooked pairs.
     pub fn project_settings_changed(&mut self) {
-        self.replan = true;
+        self.queued.replan = true;
         // The kinematic entry gives way to the project's types: a pair's
         // rule may follow a type changed on either of its colliders.
-        self.recalculate_all = true;
+        self.queued.recalculate_all = true;
     }
 
     /// Gives every collider the crate wrote to its project's own settings
@@ -503,18 +526,18 @@ impl RuleHooks {
     /// assert_eq!(world.colliders[ball].solver_groups(), InteractionGroups::all(), "the project's");
     /// ```
     pub fn restore_project_settings(&mut self, colliders: &mut ColliderSet) {
-        for (handle, written) in self.written.iter() {
+        for (handle, written) in self.planned.written.iter() {
             if let Some(collider) = colliders.get_mut(handle) {
                 written.own_as_of(Settings::of(collider)).write(collider);
             }
-            self.roster.wrote(handle, None);
+            self.planned.roster.wrote(handle, None);
         }
-        self.written = HandleMap::default();
-        self.replan = true;
+        self.planned.written = HandleMap::default();
+        self.queued.replan = true;
     }
 
     /// Removes the project's hooks and gives them back.
     pub fn remove_user_hooks(&mut self) -> Option<Box<dyn PhysicsHooks + Send + Sync>> {
-        self.user.take()
+        self.decide.user.take()
     }
 }

@@ -1,4 +1,4 @@
-//! Live pairs (`docs/semantics.md`, section 5): each pair's rule, kept from the pair's creation to
+//! Live pairs (`docs/semantics.md`, "Decisions about live pairs"): each pair's rule, kept from the pair's creation to
 //! its end, its override, its manifold setting, and the contacts frozen by
 //! `ManifoldUpdate::Never`.
 

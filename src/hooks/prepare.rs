@@ -28,41 +28,41 @@ impl RuleHooks {
     /// If Rapier stepped with these hooks since the last `prepare` and
     /// [`after_step`](Self::after_step) was not called after it.
     pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
-        if self.prepared && *self.stepped.get_mut() {
+        if self.boundary.prepared && *self.boundary.stepped.get_mut() {
             missing("after_step", "after the last step");
         }
-        self.prepared = true;
-        *self.stepped.get_mut() = false;
-        self.owe_freeze = self.unsettled;
-        self.step += 1;
+        self.boundary.prepared = true;
+        *self.boundary.stepped.get_mut() = false;
+        self.boundary.owe_freeze = self.boundary.unsettled;
+        self.boundary.step += 1;
         self.stats = StepStats {
-            hooked_colliders: self.hooked,
+            hooked_colliders: self.planned.hooked,
             tracked_pairs: self.pairs.len(),
             ..StepStats::default()
         };
         let full = self.full_pass();
-        self.replan |= self.exhaustive;
+        self.queued.replan |= self.planned.exhaustive;
         if self.idle() {
             return;
         }
-        if full != self.plan.full && (full.is_some() || self.plan.full.is_some()) {
-            self.replan = true;
+        if full != self.planned.plan.full && (full.is_some() || self.planned.plan.full.is_some()) {
+            self.queued.replan = true;
         }
 
         // 1. What the edits touched starts being watched.
-        let changes = self.rules.take_changes();
+        let changes = self.decide.rules.take_changes();
         // Re-parenting moves colliders from under one side of a specific
         // entry to another: which side is cheaper to hook may change.
-        self.replan |= changes.parents && self.rules.has_specific();
-        let mut changed = match self.rules.touched_nodes(&changes) {
+        self.queued.replan |= changes.parents && self.decide.rules.has_specific();
+        let mut changed = match self.decide.rules.touched_nodes(&changes) {
             // The first step reads the whole rule set: it may have been
             // built, or loaded, before the hooks existed.
-            Some(nodes) if !self.exhaustive && self.step > 1 => nodes,
+            Some(nodes) if !self.planned.exhaustive && self.boundary.step > 1 => nodes,
             // The nodes the edits touched stay in, rules or not: a node
             // whose rules were just cleared has pairs to recalculate.
             touched => {
-                self.replan = true;
-                let mut nodes = self.rules.ruled_nodes();
+                self.queued.replan = true;
+                let mut nodes = self.decide.rules.ruled_nodes();
                 nodes.extend(touched.into_iter().flatten());
                 nodes
             }
@@ -72,13 +72,13 @@ impl RuleHooks {
         }
 
         // 2. Look at what is watched: removals, changes, additions.
-        let everything = self.plan.full.is_some() || full.is_some() || self.exhaustive;
+        let everything = self.planned.plan.full.is_some() || full.is_some() || self.planned.exhaustive;
         // Whether the rules still reach a watched object changes only with an
         // edit of it (marked by `watch`), or with a global one.
-        let ask_all = self.replan;
+        let ask_all = self.queued.replan;
         let look = {
-            let (rules, plan) = (&self.rules, &self.plan);
-            self.roster
+            let (rules, plan) = (&self.decide.rules, &self.planned.plan);
+            self.planned.roster
                 .look(bodies, colliders, everything, ask_all, |node| {
                     reached(rules, plan, bodies, colliders, node)
                 })
@@ -86,35 +86,36 @@ impl RuleHooks {
         // Which side of a specific entry is cheaper to hook follows the
         // colliders under each side and their bodies' types (asked before
         // removed bodies leave the parent map).
-        self.replan |= look
+        self.queued.replan |= look
             .left
             .iter()
             .map(|&b| Node::Body(b))
             .chain(look.added.iter().map(|&c| Node::Collider(c)))
             .chain(look.changed.iter().copied())
-            .any(|node| planner::touches_entries(&self.rules, bodies, colliders, node));
+            .any(|node| planner::touches_entries(&self.decide.rules, bodies, colliders, node));
         self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
         for &c in &look.released {
-            self.plan.colliders.remove(c);
+            self.planned.plan.colliders.remove(c);
         }
         if !(look.removed_colliders.is_empty() && look.released.is_empty()) {
             self.count_hooked();
         }
         changed.extend(look.changed);
         // Forgetting a removed parent changes its children's chains.
-        let removal_changes = self.rules.take_changes();
-        if let Some(more) = self.rules.touched_nodes(&removal_changes) {
+        let removal_changes = self.decide.rules.take_changes();
+        if let Some(more) = self.decide.rules.touched_nodes(&removal_changes) {
             changed.extend(more);
         }
         // The project changed a setting the plan is combined with, or
         // colliders came or went in a world whose plan shares bits or types
         // with every collider's project settings: plan again.
         let recount = self
+            .planned
             .plan
             .room
             .is_some_and(|(_, count)| count != colliders.len());
         if recount || !look.project_changed.is_empty() {
-            self.replan = true;
+            self.queued.replan = true;
         }
         // A project setting can change a pair's rule (the kinematic entry
         // gives way to wider types): those colliders' pairs are recalculated.
@@ -124,36 +125,36 @@ impl RuleHooks {
         // watched (a collider moved onto a watched body may have hooked pairs
         // whose rule its new chain changes).
         let mut under: HashSet<ColliderHandle> = look.added.iter().copied().collect();
-        self.candidates.extend(look.added);
+        self.queued.candidates.extend(look.added);
         for &node in &changed {
             under.extend(self.colliders_under(node, bodies, colliders));
         }
         // Their pairs may have changed in Rapier too: looked up after the step.
-        self.touched.extend(under.iter().copied());
-        self.touched.extend(self.candidates.iter().copied());
-        if self.replan {
+        self.queued.touched.extend(under.iter().copied());
+        self.queued.touched.extend(self.queued.candidates.iter().copied());
+        if self.queued.replan {
             self.apply_plan(bodies, colliders);
         } else {
-            self.candidates.extend(under.iter().copied());
-            if !self.candidates.is_empty() {
+            self.queued.candidates.extend(under.iter().copied());
+            if !self.queued.candidates.is_empty() {
                 self.apply_partial_plan(bodies, colliders);
             }
         }
 
         // 4. Recalculate live pairs as the policy says.
         let mut drop_overrides = HashSet::new();
-        for node in std::mem::take(&mut self.forced) {
+        for node in std::mem::take(&mut self.queued.forced) {
             drop_overrides.extend(self.colliders_under(node, bodies, colliders));
         }
-        let everything = self.policy == RecalculationPolicy::EveryStep
-            || (self.policy == RecalculationPolicy::OnChange
-                && (changes.everything || std::mem::take(&mut self.recalculate_all)));
+        let everything = self.decide.policy == RecalculationPolicy::EveryStep
+            || (self.decide.policy == RecalculationPolicy::OnChange
+                && (changes.everything || std::mem::take(&mut self.queued.recalculate_all)));
         let mut affected = HashSet::new();
-        if self.policy == RecalculationPolicy::OnChange && !everything {
+        if self.decide.policy == RecalculationPolicy::OnChange && !everything {
             affected = under;
         }
-        if self.policy == RecalculationPolicy::Manual {
-            self.recalculate_all = false;
+        if self.decide.policy == RecalculationPolicy::Manual {
+            self.queued.recalculate_all = false;
         }
         if everything || !affected.is_empty() || !drop_overrides.is_empty() {
             let refresh =
@@ -163,49 +164,49 @@ impl RuleHooks {
                     let groups = collider.collision_groups();
                     collider.set_collision_groups(InteractionGroups::none());
                     collider.set_collision_groups(groups);
-                    self.regrouped.insert(handle);
+                    self.queued.regrouped.insert(handle);
                 }
             }
         }
-        for c in std::mem::take(&mut self.wake_colliders) {
-            self.to_wake
+        for c in std::mem::take(&mut self.queued.wake_colliders) {
+            self.queued.to_wake
                 .extend(colliders.get(c).and_then(|c| c.parent()));
         }
-        self.stats.hooked_colliders = self.hooked;
-        self.stats.full_pass = self.plan.full;
-        self.stats.shares_project_bits = self.plan.room.is_some();
-        self.stats.watched_colliders = self.roster.collider_count();
-        self.stats.watched_bodies = self.roster.body_count();
+        self.stats.hooked_colliders = self.planned.hooked;
+        self.stats.full_pass = self.planned.plan.full;
+        self.stats.shares_project_bits = self.planned.plan.room.is_some();
+        self.stats.watched_colliders = self.planned.roster.collider_count();
+        self.stats.watched_bodies = self.planned.roster.body_count();
     }
 
     /// Whether the rules reach nothing and nothing waits: the common case
     /// of a world without rules, which costs a few branches per step.
     pub(super) fn idle(&self) -> bool {
-        self.roster.collider_count() == 0
-            && self.roster.body_count() == 0
+        self.planned.roster.collider_count() == 0
+            && self.planned.roster.body_count() == 0
             && self.pairs.is_empty()
-            && self.plan.full.is_none()
-            && !self.replan
-            && !self.rules.has_changes()
-            && self.candidates.is_empty()
-            && self.forced.is_empty()
-            && self.wake_colliders.is_empty()
-            && self.touched.is_empty()
-            && self.regrouped.is_empty()
-            && !self.recalculate_all
-            && self.policy != RecalculationPolicy::EveryStep
+            && self.planned.plan.full.is_none()
+            && !self.queued.replan
+            && !self.decide.rules.has_changes()
+            && self.queued.candidates.is_empty()
+            && self.queued.forced.is_empty()
+            && self.queued.wake_colliders.is_empty()
+            && self.queued.touched.is_empty()
+            && self.queued.regrouped.is_empty()
+            && !self.queued.recalculate_all
+            && self.decide.policy != RecalculationPolicy::EveryStep
             && self.full_pass().is_none()
     }
 
     /// Why every collider must be looked at and hooked, if it must.
     pub(super) fn full_pass(&self) -> Option<FullPass> {
-        if self.calculator.is_some() {
+        if self.decide.calculator.is_some() {
             Some(FullPass::Calculator)
-        } else if self.on_created.is_some() {
+        } else if self.decide.on_created.is_some() {
             Some(FullPass::PairCreatedCallback)
-        } else if self.policy == RecalculationPolicy::Manual {
+        } else if self.decide.policy == RecalculationPolicy::Manual {
             Some(FullPass::ManualPolicy)
-        } else if !self.planner {
+        } else if !self.planned.enabled {
             Some(FullPass::PlannerOff)
         } else {
             None
@@ -216,21 +217,21 @@ impl RuleHooks {
     fn watch(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) {
         match node {
             Node::Body(body) => {
-                self.roster.watch_body(bodies, body);
+                self.planned.roster.watch_body(bodies, body);
             }
             // Watched even if Rapier removed it: the look then forgets it.
             Node::Collider(c) => {
-                if self.roster.watch_collider(bodies, colliders, c) {
-                    self.candidates.push(c);
+                if self.planned.roster.watch_collider(bodies, colliders, c) {
+                    self.queued.candidates.push(c);
                 }
             }
         }
-        self.roster.mark(node);
+        self.planned.roster.mark(node);
         for c in self.colliders_under(node, bodies, colliders) {
-            if self.roster.watch_collider(bodies, colliders, c) {
-                self.candidates.push(c);
+            if self.planned.roster.watch_collider(bodies, colliders, c) {
+                self.queued.candidates.push(c);
             }
-            self.roster.mark(Node::Collider(c));
+            self.planned.roster.mark(Node::Collider(c));
         }
     }
 
@@ -251,16 +252,16 @@ impl RuleHooks {
             });
         }
         for &(handle, body) in removed {
-            self.rules.remove_node(handle);
-            self.plan.colliders.remove(handle);
-            self.written.remove(handle);
+            self.decide.rules.remove_node(handle);
+            self.planned.plan.colliders.remove(handle);
+            self.planned.written.remove(handle);
             // A body that keeps other colliders is in the look's `left`.
             if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
-                self.rules.remove_node(body);
+                self.decide.rules.remove_node(body);
             }
         }
         for &body in removed_bodies {
-            self.rules.remove_node(body);
+            self.decide.rules.remove_node(body);
         }
         self.stats.removed_objects = removed.len() + removed_bodies.len();
     }

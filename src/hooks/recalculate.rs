@@ -16,7 +16,7 @@ impl RuleHooks {
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
     ) -> Vec<ColliderHandle> {
-        self.rules.colliders_under(node, bodies, colliders)
+        self.decide.rules.colliders_under(node, bodies, colliders)
     }
 
     /// Recalculates the live pairs that are `everything`, or touch an
@@ -62,7 +62,7 @@ impl RuleHooks {
             // A body changed type since the pair was calculated: Rapier looks
             // at its colliders' pairs again by itself and wakes it as
             // `set_body_type` was told, so the new rule needs neither a nudge
-            // nor a wake-up (`docs/semantics.md`, section 5).
+            // nor a wake-up (`docs/semantics.md`, "Decisions about live pairs").
             let retyped = kinds != state.kinds;
             state.computed = computed;
             state.kinds = kinds;

@@ -102,7 +102,7 @@ impl RuleHooks {
         let idle = self.idle();
         if idle {
             // No collider carries the hook flag: Rapier never calls the hook.
-            self.step += 1;
+            self.boundary.step += 1;
             self.stats = StepStats::default();
         } else {
             self.prepare(bodies, colliders);
@@ -130,7 +130,7 @@ impl RuleHooks {
         }
         // Rapier applies removals to its graphs during the step.
         let census = census(bodies, colliders, narrow_phase);
-        let unchanged = std::mem::replace(&mut self.census, census) == census;
+        let unchanged = std::mem::replace(&mut self.boundary.census, census) == census;
         let quiet = resting && unchanged && islands.num_active_bodies() == 0;
         let joints = Joints {
             impulse: impulse_joints,
@@ -146,8 +146,8 @@ impl RuleHooks {
     /// [`prepare`](Self::prepare) when stepping a bare pipeline.
     pub fn freeze_manifolds(&mut self, narrow_phase: &NarrowPhase) {
         self.check_witness(narrow_phase);
-        self.owe_freeze = false;
-        if !std::mem::take(&mut self.unsettled) {
+        self.boundary.owe_freeze = false;
+        if !std::mem::take(&mut self.boundary.unsettled) {
             return;
         }
         for (key, state) in self.pairs.iter() {
@@ -174,7 +174,7 @@ impl RuleHooks {
     /// [`step`](Self::step); call it after [`prepare`](Self::prepare) when
     /// stepping a bare pipeline.
     pub fn wake_edited(&mut self, islands: &mut IslandManager, bodies: &mut RigidBodySet) {
-        for body in self.to_wake.drain(..) {
+        for body in self.queued.to_wake.drain(..) {
             if bodies.contains(body) {
                 islands.wake_up(bodies, body, true);
             }

@@ -27,13 +27,13 @@ impl RuleHooks {
         joints: Option<Joints<'_>>,
         quiet: bool,
     ) {
-        if !std::mem::take(&mut self.prepared) {
+        if !std::mem::take(&mut self.boundary.prepared) {
             missing("prepare", "before the step");
         }
-        if !self.to_wake.is_empty() {
+        if !self.queued.to_wake.is_empty() {
             missing("wake_edited", "before the step, after prepare");
         }
-        if self.owe_freeze {
+        if self.boundary.owe_freeze {
             missing("freeze_manifolds", "before the step, after prepare");
         }
         let pending_empty = self
@@ -41,8 +41,8 @@ impl RuleHooks {
             .get_mut()
             .unwrap_or_else(PoisonError::into_inner)
             .is_empty();
-        let unchanged = pending_empty && self.touched.is_empty() && self.regrouped.is_empty();
-        if unchanged && !self.exhaustive && (quiet || self.pairs.is_empty()) {
+        let unchanged = pending_empty && self.queued.touched.is_empty() && self.queued.regrouped.is_empty();
+        if unchanged && !self.planned.exhaustive && (quiet || self.pairs.is_empty()) {
             return;
         }
         self.stats.swept = true;
@@ -77,13 +77,13 @@ impl RuleHooks {
         // The pairs of colliders configured or changed before the step:
         // Rapier may have made some without asking the hook (the bodies
         // rest), and those of a hooked collider are live all the same.
-        let touched = std::mem::take(&mut self.touched);
+        let touched = std::mem::take(&mut self.queued.touched);
         let hooked = |plan: &Plan, c: ColliderHandle| {
             plan.colliders.get(c).is_some_and(|p| p.hooked())
         };
         let mut unseen = Vec::new();
         for &c in &touched {
-            if !hooked(&self.plan, c) {
+            if !hooked(&self.planned.plan, c) {
                 continue;
             }
             for other in partners_of(narrow_phase, c) {
@@ -101,7 +101,7 @@ impl RuleHooks {
             let kinds = key.kinds(bodies, colliders);
             let parts = key.made_of_parts(colliders);
             self.pairs
-                .insert(key, PairState::new(rule, self.step, kinds, parts));
+                .insert(key, PairState::new(rule, self.boundary.step, kinds, parts));
         }
 
         // Forget the hooked pairs Rapier no longer has, looked up in Rapier's
@@ -109,13 +109,13 @@ impl RuleHooks {
         // even a pair of resting bodies ends when the project moves or
         // re-parents a collider through Rapier, which the hooks do not watch
         // unless the rules reach it.
-        let step = self.step;
+        let step = self.boundary.step;
         let touched: HashSet<ColliderHandle> = touched.into_iter().collect();
-        let regrouped = std::mem::take(&mut self.regrouped);
+        let regrouped = std::mem::take(&mut self.queued.regrouped);
         let (mut answered, mut never_ended) = (0, false);
         let mut retyped = Vec::new();
-        let recomputes = self.policy != RecalculationPolicy::Manual;
-        let plan = &self.plan;
+        let recomputes = self.decide.policy != RecalculationPolicy::Manual;
+        let plan = &self.planned.plan;
         let mut witness = None;
         self.pairs.retain(|key, state| {
             let (a, b) = key.colliders();
@@ -176,8 +176,8 @@ impl RuleHooks {
             }
             keep
         });
-        self.replan |= never_ended;
-        self.witness = witness;
+        self.queued.replan |= never_ended;
+        self.boundary.witness = witness;
         for (key, kinds) in retyped {
             let (a, b) = key.colliders();
             let rule = self.calculate(bodies, colliders, a, b);
@@ -188,7 +188,7 @@ impl RuleHooks {
         }
         // Pairs kept through their colliders' regrouping are looked up again
         // after the next step: by then Rapier has found them again, or not.
-        self.touched.extend(regrouped);
+        self.queued.touched.extend(regrouped);
         self.stats.hooked_pairs_answered = answered;
         self.stats.tracked_pairs = self.pairs.len();
     }

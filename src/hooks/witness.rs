@@ -14,7 +14,7 @@ impl RuleHooks {
     /// response") shows another answer in Rapier's graph. One look-up per
     /// step (`docs/semantics.md`, "Stepping without the hooks").
     pub(super) fn check_witness(&mut self, narrow_phase: &NarrowPhase) {
-        let Some((key, rule)) = self.witness.take() else {
+        let Some((key, rule)) = self.boundary.witness.take() else {
             return;
         };
         let (a, b) = key.colliders();
@@ -41,7 +41,7 @@ impl RuleHooks {
         // looks; a release build keeps running and says it once.
         if cfg!(debug_assertions) {
             panic!("{message}");
-        } else if !std::mem::replace(&mut self.reported_unhooked, true) {
+        } else if !std::mem::replace(&mut self.boundary.reported_unhooked, true) {
             log::warn!("{message}");
         }
     }

@@ -15,11 +15,11 @@ impl RuleHooks {
     /// those that differ; colliders no longer reached get Rapier's defaults back.
     pub(super) fn apply_plan(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
         let pinned = self.pinned();
-        let ruled = self.rules.ruled_nodes();
-        let reached: Vec<ColliderHandle> = self.roster.colliders().to_vec();
+        let ruled = self.decide.rules.ruled_nodes();
+        let reached: Vec<ColliderHandle> = self.planned.roster.colliders().to_vec();
         let own = |h: ColliderHandle, c: &Collider| self.own_settings(h, c);
         let request = Request {
-            rules: &self.rules,
+            rules: &self.decide.rules,
             bodies,
             colliders,
             reached: &reached,
@@ -30,7 +30,7 @@ impl RuleHooks {
         };
         let plan = planner::plan(&request);
         // Never pairs: the hooked side also modifies the pair's contacts.
-        self.modifying = self
+        self.planned.modifying = self
             .pairs
             .iter()
             .filter(|(_, s)| s.manifold == ManifoldUpdate::Never)
@@ -50,34 +50,34 @@ impl RuleHooks {
                     let dynamic = dynamic_body(bodies, collider.parent());
                     self.configure(bodies, colliders, handle, ColliderPlan::unreached(dynamic));
                 }
-                self.plan.colliders.remove(handle);
+                self.planned.plan.colliders.remove(handle);
             }
         }
         let mut entries: Vec<_> = plan.colliders.iter().map(|(h, e)| (h, *e)).collect();
         entries.sort_unstable_by_key(|(h, _)| h.into_raw_parts());
         self.stats.planned_colliders = entries.len();
         for &(handle, _) in &entries {
-            self.roster.watch_collider(bodies, colliders, handle);
+            self.planned.roster.watch_collider(bodies, colliders, handle);
         }
         for (handle, entry) in entries {
             self.configure(bodies, colliders, handle, entry);
         }
-        self.plan = plan;
-        self.replan = false;
-        self.candidates.clear();
+        self.planned.plan = plan;
+        self.queued.replan = false;
+        self.queued.candidates.clear();
         self.count_hooked();
     }
 
     /// Plans the candidate colliders alone when the rest of the plan stands
     /// (see `planner::replan_some`), else everything reached.
     pub(super) fn apply_partial_plan(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
-        let mut handles = std::mem::take(&mut self.candidates);
+        let mut handles = std::mem::take(&mut self.queued.candidates);
         handles.sort_unstable_by_key(|h| h.into_raw_parts());
         handles.dedup();
         let pinned = self.pinned();
         let own = |h: ColliderHandle, c: &Collider| self.own_settings(h, c);
         let request = Request {
-            rules: &self.rules,
+            rules: &self.decide.rules,
             bodies,
             colliders,
             reached: &handles,
@@ -86,23 +86,24 @@ impl RuleHooks {
             all_hooked: self.full_pass(),
             own: &own,
         };
-        let Some(planned) = planner::replan_some(&self.plan, &request, &handles) else {
+        let Some(planned) = planner::replan_some(&self.planned.plan, &request, &handles) else {
             return self.apply_plan(bodies, colliders);
         };
         self.stats.planned_colliders = planned.len();
         for (handle, entry) in planned {
             self.configure(bodies, colliders, handle, entry);
-            self.plan.colliders.insert(handle, entry);
+            self.planned.plan.colliders.insert(handle, entry);
         }
         self.count_hooked();
     }
 
     pub(super) fn count_hooked(&mut self) {
-        self.hooked = self
+        self.planned.hooked = self
+            .planned
             .roster
             .colliders()
             .iter()
-            .filter(|&&c| self.plan.colliders.get(c).is_some_and(|p| p.hooked()))
+            .filter(|&&c| self.planned.plan.colliders.get(c).is_some_and(|p| p.hooked()))
             .count();
     }
 
@@ -120,42 +121,42 @@ impl RuleHooks {
             return;
         };
         let dynamic = dynamic_body(bodies, current.parent());
-        let planned_before = self.plan.colliders.get(handle).is_some();
-        let before = self.plan.entry(handle, dynamic);
+        let planned_before = self.planned.plan.colliders.get(handle).is_some();
+        let before = self.planned.plan.entry(handle, dynamic);
         let now = Settings::of(current);
         let own = self.own_settings(handle, current);
-        let target = entry.combined(own, self.modifying.contains(&handle));
+        let target = entry.combined(own, self.planned.modifying.contains(&handle));
         // The project changed a setting through Rapier: its pairs may have
         // ended (Rapier's own filters stop them), looked up after the step.
-        if self.written.get(handle).is_some_and(|w| w.own != own) {
-            self.touched.push(handle);
+        if self.planned.written.get(handle).is_some_and(|w| w.own != own) {
+            self.queued.touched.push(handle);
         }
         // The collider is the project's again once the crate adds nothing.
         if target == own {
-            self.written.remove(handle);
-            self.roster.wrote(handle, None);
+            self.planned.written.remove(handle);
+            self.planned.roster.wrote(handle, None);
         } else {
             let written = Written { own, wrote: target };
-            self.written.insert_evicting(handle, written);
-            self.roster.wrote(handle, Some(target));
+            self.planned.written.insert_evicting(handle, written);
+            self.planned.roster.wrote(handle, Some(target));
         }
         if target == now {
             return;
         }
         // New settings take effect on a sleeping body once it wakes (a pair
         // whose rule an edit changed wakes its bodies on its own).
-        if self.policy != RecalculationPolicy::Manual && before != entry {
-            self.to_wake.extend(current.parent());
+        if self.decide.policy != RecalculationPolicy::Manual && before != entry {
+            self.queued.to_wake.extend(current.parent());
         }
-        self.touched.push(handle);
+        self.queued.touched.push(handle);
         if now.collision != target.collision || now.solver != target.solver {
-            self.regrouped.insert(handle);
+            self.queued.regrouped.insert(handle);
         }
         // A collider of a non-dynamic body may never wake: when the hook
         // takes over (or lets go of) its pairs, Rapier must look at them.
         let rehook = planned_before && now.hooks != target.hooks && !dynamic;
         if rehook {
-            self.regrouped.insert(handle);
+            self.queued.regrouped.insert(handle);
         }
         // `get_mut` marks a collider modified: only for those that differ.
         let collider = &mut colliders[handle];

@@ -1,6 +1,6 @@
 //! Compound hierarchies from Rapier's joints: the parent map filled from a
 //! multibody's tree, or from a root through impulse joints
-//! (`docs/semantics.md`, section 4).
+//! (`docs/semantics.md`, "Decisions where the specification is silent").
 
 use std::collections::VecDeque;
 

@@ -1,11 +1,11 @@
-//! Forgetting removed objects (`docs/semantics.md`, "Removed objects"): their rules,
+//! Forgetting removed objects (`docs/semantics.md`, "Handles of removed objects"): their rules,
 //! the entries about them and their parent links.
 
 use super::super::rapier::prelude::{ColliderSet, RigidBodySet};
 
 use super::super::{CollisionRuleSet, Node};
 
-/// Forgetting removed objects (`docs/semantics.md`, section 4).
+/// Forgetting removed objects (`docs/semantics.md`, "Decisions where the specification is silent").
 impl CollisionRuleSet {
     /// Forgets a node that left the world: its rules (a shared record lives
     /// on for its other users), every specific entry about it, and for a body

@@ -38,7 +38,7 @@ impl ColliderPlan {
     }
 
     /// The settings a collider gets: the plan combined with the project's
-    /// own settings `own` (`docs/semantics.md`, section 6). The hook bits are
+    /// own settings `own` (`docs/semantics.md`, "The project's own settings"). The hook bits are
     /// added to the project's; the project's collision and solver groups are
     /// kept, and narrowed only where the planner gave a group a bit, which it
     /// does only for colliders whose own groups are Rapier's defaults; the

@@ -137,7 +137,7 @@ impl GroupSettings {
         }
         let filtered_by_types = |g: CollisionGroup| !has_dynamic(g) && !static_types.contains(&g);
         // The (DEFAULT_KINEMATIC, DEFAULT_KINEMATIC) entry gives way to a
-        // project's wider collision types (`docs/semantics.md`, section 6), so
+        // project's wider collision types (`docs/semantics.md`, "The project's own settings"), so
         // Rapier's type test decides those pairs whatever the project set.
         let kinematic_entry = |a: CollisionGroup, b: CollisionGroup| {
             a == CollisionGroup::DEFAULT_KINEMATIC && b == CollisionGroup::DEFAULT_KINEMATIC

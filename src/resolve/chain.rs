@@ -1,5 +1,5 @@
 //! A collider's chain as the stages read it: each node with its record and
-//! its effective group (`docs/semantics.md`, "Chain", "Effective group").
+//! its effective group (`docs/semantics.md`, "Terms", chain and effective group).
 
 use super::super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodySet};
 use smallvec::SmallVec;
@@ -12,7 +12,7 @@ use super::super::{CollisionGroup, CollisionRuleSet, Node};
 pub(super) struct Link<'a> {
     pub(super) node: Node,
     pub(super) record: Option<&'a Record>,
-    /// The node's effective group (`docs/semantics.md`, section 1).
+    /// The node's effective group (`docs/semantics.md`, "Terms").
     pub(super) group: CollisionGroup,
 }
 
@@ -38,7 +38,7 @@ impl CollisionRuleSet {
         let present = colliders.contains(leaf);
         // A node with no group at or above it counts as the colliding body's
         // default group, whatever its ancestors' types (`docs/semantics.md`,
-        // "Effective group"): a parent map alone changes no pair.
+        // "Terms", effective group): a parent map alone changes no pair.
         let fallback = default_group(bodies, colliders, Node::Collider(leaf));
         let mut links: SmallVec<[Link<'a>; INLINE_CHAIN]> = SmallVec::new();
         let mut node = Some(Node::Collider(leaf));
@@ -124,7 +124,7 @@ impl CollisionRuleSet {
 }
 
 /// The default group of the body of `node` (`docs/semantics.md`,
-/// "Effective group").
+/// "Terms": effective group).
 #[inline]
 fn default_group(bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) -> CollisionGroup {
     CollisionGroup::default_for(is_dynamic(bodies, colliders, node))

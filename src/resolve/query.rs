@@ -1,5 +1,5 @@
 //! Scene queries that follow the rules: a predicate for Rapier's
-//! `QueryFilter` (`docs/semantics.md`, section 6).
+//! `QueryFilter` (`docs/semantics.md`, "The project's own settings").
 
 use super::super::rapier::prelude::*;
 

@@ -1,7 +1,7 @@
 //! What the project itself tells Rapier about a collider: its collision
 //! groups, solver groups, active collision types and hook bits. The crate
 //! combines its plan with these and never writes in their place
-//! (`docs/semantics.md`, section 6): a pair interacts only as far as both the
+//! (`docs/semantics.md`, "The project's own settings"): a pair interacts only as far as both the
 //! project's settings and the rules allow.
 
 use super::super::rapier::prelude::*;

@@ -7,7 +7,7 @@ use super::super::rapier::prelude::*;
 /// polyline, height field, voxel set or compound. Rapier keeps one
 /// manifold per touching part, and parts come and go as the bodies move,
 /// so contacts frozen per manifold could not be kept
-/// (`docs/semantics.md`, "Manifold settings").
+/// (`docs/architecture.md`, "Manifold settings").
 pub(crate) fn made_of_parts(colliders: &ColliderSet, a: ColliderHandle, b: ColliderHandle) -> bool {
     let parts = |c: ColliderHandle| {
         colliders.get(c).is_some_and(|collider| {

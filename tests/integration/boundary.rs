@@ -120,10 +120,10 @@ impl Crossing {
                 let w = &scene.world;
                 hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
                 assert_eq!(
-                    hooks.hooked_count() > 0,
+                    hooks.stats().hooked_colliders > 0,
                     pass == Pass::Hook,
                     "{pass:?}: hooked colliders {}",
-                    hooks.hooked_count()
+                    hooks.stats().hooked_colliders
                 );
             }
         }

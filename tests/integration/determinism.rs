@@ -47,7 +47,7 @@ fn digest() -> u64 {
     digest_of(false, |run, hasher| {
         run.poses().hash(hasher);
         run.live().hash(hasher);
-        run.hooks.hooked_count().hash(hasher);
+        run.hooks.stats().hooked_colliders.hash(hasher);
     })
 }
 
@@ -59,7 +59,7 @@ fn rules_digest() -> u64 {
     digest_of(true, |run, hasher| {
         run.live().hash(hasher);
         run.known().hash(hasher);
-        run.hooks.hooked_count().hash(hasher);
+        run.hooks.stats().hooked_colliders.hash(hasher);
     })
 }
 

@@ -68,7 +68,7 @@ fn a_disabled_collider_keeps_its_rules_and_loses_its_overrides() {
         hooks.rules_mut().set_personal(body, personal);
         hooks.step(&mut scene.world);
         assert_eq!(
-            hooks.hooked_count() == 1,
+            hooks.stats().hooked_colliders == 1,
             hooked,
             "{personal:?}: {:?}",
             hooks.stats()

@@ -129,7 +129,7 @@ fn group_rules_share_the_bits_project_layers_leave_free() {
         hooks.step(&mut world);
     }
     assert_eq!(
-        hooks.hooked_count(),
+        hooks.stats().hooked_colliders,
         0,
         "the rules could share the bits: {:?}",
         hooks.stats()
@@ -173,7 +173,7 @@ fn group_rules_fall_back_to_the_hook_where_project_layers_take_the_bits() {
         hooks.step(&mut world);
     }
     assert_eq!(
-        hooks.hooked_count(),
+        hooks.stats().hooked_colliders,
         10,
         "the two ruled columns fall back to the hook: {:?}",
         hooks.stats()
@@ -423,7 +423,7 @@ fn a_ruled_collider_on_its_own_layer_is_hooked_and_keeps_the_layer() {
     for _ in 0..30 {
         hooks.step(&mut world);
     }
-    assert_eq!(hooks.hooked_count(), 5, "{:?}", hooks.stats());
+    assert_eq!(hooks.stats().hooked_colliders, 5, "{:?}", hooks.stats());
     for i in 0..5 {
         let (a, b) = (
             collider_of(&world, bodies[i]),
@@ -628,7 +628,7 @@ fn layers_moved_into_the_rules_step_bit_for_bit_as_the_layers() {
         .map(|(h, c)| (h, c.parent().map(|b| world.bodies[b].body_type())))
         .collect();
     assert_eq!(
-        hooks.hooked_count(),
+        hooks.stats().hooked_colliders,
         0,
         "hooked: {hooked:?}, {:?}",
         hooks.stats()

@@ -801,7 +801,7 @@ fn without_rules_the_world_steps_exactly_as_plain_rapier() {
         assert_eq!(a, b, "a box drifted from plain Rapier: {a:?} vs {b:?}");
     }
     assert_eq!(
-        hooks.hooked_count(),
+        hooks.stats().hooked_colliders,
         0,
         "a collider without rules was hooked"
     );
@@ -857,7 +857,7 @@ fn group_rules_step_exactly_as_the_same_rapier_groups() {
             "a box drifted from hand-written Rapier groups: {a:?} vs {b:?}"
         );
     }
-    assert_eq!(hooks.hooked_count(), 0, "group rules needed the hook");
+    assert_eq!(hooks.stats().hooked_colliders, 0, "group rules needed the hook");
 }
 
 #[test]
@@ -886,7 +886,7 @@ fn more_groups_than_bits_fall_back_to_the_hook_and_stay_exact() {
     let mut hooks = RuleHooks::new(rules);
     hooks.step(&mut world);
     hooks.step(&mut world);
-    let hooked = hooks.hooked_count();
+    let hooked = hooks.stats().hooked_colliders;
     assert!(
         hooked >= 8,
         "40 related groups fit in 32 bits? {hooked} hooked"
@@ -918,7 +918,7 @@ fn a_body_changing_type_updates_its_pairs_and_its_parent_changing_type_does_not(
 -> Result<(), RuleError> {
     // The cube hangs under a colliderless fixed frame and rests on a
     // kinematic deck. Its pairs read its own type, never its parent's
-    // (`docs/semantics.md`, "Effective group"): the frame made dynamic
+    // (`docs/semantics.md`, "Terms", effective group): the frame made dynamic
     // changes nothing; the cube made kinematic meets the deck in the
     // built-in (DEFAULT_KINEMATIC, DEFAULT_KINEMATIC) entry, and made dynamic
     // again it is Normal with the deck again.

@@ -108,7 +108,7 @@ fn soak_a_world_with_rule_churn_and_turnover() {
 
         let rapier = world.narrow_phase.contact_pairs().count()
             + world.narrow_phase.intersection_pairs().count();
-        let tracked = hooks.tracked_pairs();
+        let tracked = hooks.stats().tracked_pairs;
         assert!(
             tracked <= rapier,
             "step {step}: the hooks track {tracked} pairs, Rapier has {rapier}"

@@ -29,8 +29,10 @@ macro_rules! dimension {
             RuleHooks, StepStats, WorldRef,
         };
         pub use model::{
-            CollisionGroup, CollisionRule, CollisionRuleSet, Node, Problem, RuleError,
+            CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable, Node, Problem, RuleError,
         };
+        #[cfg(feature = "serde")]
+        pub use model::{LoadError, SavedRuleSet};
         pub use resolve::{Explanation, Stage};
     };
 }

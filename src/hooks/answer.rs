@@ -151,7 +151,7 @@ impl RuleHooks {
         key: PairKey,
         state: &PairState,
         kinds: BodyKinds,
-    ) -> (CollisionRule, ManifoldUpdate, bool) {
+    ) -> Verdict {
         let pending = self.pending().get(&key).map(PairState::rule);
         let rule = pending.unwrap_or_else(|| {
             let (a, b) = key.colliders();
@@ -161,7 +161,11 @@ impl RuleHooks {
             rule
         });
         let again = self.answered_by_ccd(context, state, rule, state.manifold);
-        (rule, state.manifold, again)
+        Verdict {
+            rule,
+            manifold: state.manifold,
+            again,
+        }
     }
 
     /// The hook's slow path: a pair not in the table. Calculates its rule
@@ -172,14 +176,14 @@ impl RuleHooks {
         &self,
         context: &PairFilterContext<'_>,
         key: PairKey,
-    ) -> (CollisionRule, ManifoldUpdate, bool) {
+    ) -> Verdict {
         if let Some(state) = self.pending().get(&key) {
             let (rule, manifold) = (state.rule(), state.manifold);
-            return (
+            return Verdict {
                 rule,
                 manifold,
-                self.answered_by_ccd(context, state, rule, manifold),
-            );
+                again: self.answered_by_ccd(context, state, rule, manifold),
+            };
         }
         let (a, b) = key.colliders();
         let rule = self.calculate(context.bodies, context.colliders, a, b);
@@ -196,7 +200,11 @@ impl RuleHooks {
             .rigid_body1
             .and_then(|body| context.bodies.get(body))
             .is_some_and(|body| body.is_ccd_active());
-        (rule, ManifoldUpdate::ByRule, maybe_ccd)
+        Verdict {
+            rule,
+            manifold: ManifoldUpdate::ByRule,
+            again: maybe_ccd,
+        }
     }
 
     /// Records an answer for `state`; `true` if it is the CCD's (see
@@ -233,7 +241,7 @@ impl RuleHooks {
     }
 
     #[inline]
-    fn lookup(&self, context: &PairFilterContext<'_>) -> (CollisionRule, ManifoldUpdate, bool) {
+    fn lookup(&self, context: &PairFilterContext<'_>) -> Verdict {
         let key = PairKey::new(context.collider1, context.collider2);
         match self.pairs.get(key) {
             Some(state) => {
@@ -248,7 +256,11 @@ impl RuleHooks {
                 }
                 let rule = state.rule_for(kinds);
                 let again = self.answered_by_ccd(context, state, rule, state.manifold);
-                (rule, state.manifold, again)
+                Verdict {
+                    rule,
+                    manifold: state.manifold,
+                    again,
+                }
             }
             None => self.first_sighting(context, key),
         }
@@ -418,12 +430,26 @@ impl RuleHooks {
     }
 }
 
+/// What the hook knows of a pair when Rapier asks: its rule, its manifold
+/// setting, and whether this answer is the CCD's second question in the
+/// step (a pair without response must then be invisible to the sweep).
+#[derive(Clone, Copy)]
+struct Verdict {
+    rule: CollisionRule,
+    manifold: ManifoldUpdate,
+    again: bool,
+}
+
 impl PhysicsHooks for RuleHooks {
     fn filter_contact_pair(&self, context: &PairFilterContext<'_>) -> Option<SolverFlags> {
         let (a, b) = (context.collider1, context.collider2);
         let ours = if self.decides(a, b) {
             self.answering();
-            let (rule, manifold, again) = self.lookup(context);
+            let Verdict {
+                rule,
+                manifold,
+                again,
+            } = self.lookup(context);
             let computes = computes(rule, manifold);
             // The CCD's sweep takes a sensor for a pass-through hit, which
             // clamps nothing and gives the intersection events: a sensor
@@ -447,8 +473,8 @@ impl PhysicsHooks for RuleHooks {
         let (a, b) = (context.collider1, context.collider2);
         if self.decides(a, b) {
             self.answering();
-            let (rule, manifold, _) = self.lookup(context);
-            if !computes(rule, manifold) {
+            let verdict = self.lookup(context);
+            if !computes(verdict.rule, verdict.manifold) {
                 return false;
             }
         }

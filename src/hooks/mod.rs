@@ -35,7 +35,7 @@ use super::rapier::prelude::*;
 
 use super::model::HandleMap;
 use super::planner::Plan;
-use super::world::{Settings, Written};
+use super::world::{Census, Settings, Written};
 use super::{CollisionRule, CollisionRuleSet, Node};
 
 pub use pair_state::ManifoldUpdate;
@@ -172,7 +172,7 @@ struct Boundary {
     /// The world's census after the last step (see `world::census`): a
     /// different one means the project removed, added or moved objects,
     /// whose pairs the after-step sweep must look at even if no body moved.
-    census: [usize; 6],
+    census: Census,
     /// A hooked pair the hook answered "no contacts" or "no response" in
     /// the last step, with its rule: if Rapier's graph shows another answer
     /// before the next step, Rapier stepped without the hooks.
@@ -260,7 +260,7 @@ impl RuleHooks {
                 stepped: AtomicBool::new(false),
                 unsettled: false,
                 owe_freeze: false,
-                census: [0; 6],
+                census: Census::default(),
                 witness: None,
                 reported_unhooked: false,
             },

@@ -116,6 +116,7 @@ impl PairState {
     }
 
     /// Whether the hook answered for this pair in `step`.
+    #[inline]
     pub(crate) fn answered_in(&self, step: u64) -> bool {
         self.last_answer.load(Ordering::Relaxed) == step
     }
@@ -166,10 +167,12 @@ impl PairTable {
         self.pairs.retain(|key, state| keep(*key, state));
     }
 
+    #[inline]
     pub(crate) fn len(&self) -> usize {
         self.pairs.len()
     }
 
+    #[inline]
     pub(crate) fn is_empty(&self) -> bool {
         self.pairs.is_empty()
     }

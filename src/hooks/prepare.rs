@@ -181,6 +181,7 @@ impl RuleHooks {
 
     /// Whether the rules reach nothing and nothing waits: the common case
     /// of a world without rules, which costs a few branches per step.
+    #[inline]
     pub(super) fn idle(&self) -> bool {
         self.planned.roster.collider_count() == 0
             && self.planned.roster.body_count() == 0
@@ -199,6 +200,7 @@ impl RuleHooks {
     }
 
     /// Why every collider must be looked at and hooked, if it must.
+    #[inline]
     pub(super) fn full_pass(&self) -> Option<FullPass> {
         if self.decide.calculator.is_some() {
             Some(FullPass::Calculator)

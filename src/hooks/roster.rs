@@ -70,10 +70,12 @@ pub(crate) struct Look {
 }
 
 impl Roster {
+    #[inline]
     pub(crate) fn collider_count(&self) -> usize {
         self.collider_list.len()
     }
 
+    #[inline]
     pub(crate) fn body_count(&self) -> usize {
         self.body_list.len()
     }

@@ -20,6 +20,7 @@ pub(crate) struct Changes {
 const CHANGE_LOG_LIMIT: usize = 4096;
 
 impl Changes {
+    #[inline]
     pub(crate) fn is_empty(&self) -> bool {
         !self.everything && self.records.is_empty() && self.nodes.is_empty()
     }
@@ -62,6 +63,7 @@ impl CollisionRuleSet {
     }
 
     /// Whether anything was edited since the last [`take_changes`](Self::take_changes).
+    #[inline]
     pub(crate) fn has_changes(&self) -> bool {
         !self.changes.is_empty()
     }

@@ -6,10 +6,36 @@ use hashbrown::HashMap;
 use super::group::CollisionGroup;
 use super::super::CollisionRule;
 
-/// The group table: unordered pairs of groups to rules. A missing entry
-/// means `Defer`, and an explicit `Defer` is stored as a missing entry.
-#[derive(Clone, Debug)]
-pub(crate) struct GroupTable {
+/// The group table: unordered pairs of groups to rules (stage 3 of the
+/// calculation), and the groups it made. A missing entry means `Defer`, and
+/// an explicit `Defer` is stored as a missing entry. It starts with the two
+/// built-in groups and the built-in entry `(DEFAULT_KINEMATIC,
+/// DEFAULT_KINEMATIC) -> NoPair`.
+///
+/// Every [`CollisionRuleSet`](super::super::CollisionRuleSet) holds one
+/// ([`group_table`](super::super::CollisionRuleSet::group_table)); a table
+/// of its own is for sharing one set of groups between several worlds
+/// ([`copy_group_table`](super::super::CollisionRuleSet::copy_group_table)),
+/// as the Bevy adapter's `RuleTable` does.
+///
+/// ```
+/// use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable};
+///
+/// let mut table = GroupTable::default();
+/// let (player, debris) = (table.create_group(), table.create_group());
+/// table.set_group_rule(player, debris, CollisionRule::NoPair);
+/// assert_eq!(table.group_rule(debris, player), CollisionRule::NoPair);
+/// let k = CollisionGroup::DEFAULT_KINEMATIC;
+/// assert_eq!(table.group_rule(k, k), CollisionRule::NoPair, "the built-in entry");
+///
+/// let mut world_rules = CollisionRuleSet::default();
+/// world_rules.copy_group_table(&table, CollisionRule::Normal);
+/// assert_eq!(world_rules.group_rule(player, debris), CollisionRule::NoPair);
+/// ```
+#[doc(alias = "layer")]
+#[doc(alias = "collision matrix")]
+#[derive(Clone, Debug, PartialEq)]
+pub struct GroupTable {
     entries: HashMap<(CollisionGroup, CollisionGroup), CollisionRule>,
     next_id: u32,
 }
@@ -54,11 +80,6 @@ impl GroupTable {
         for (a, b, rule) in entries {
             self.set(a, b, rule);
         }
-    }
-
-    /// How many groups exist: the built-in two plus every created one.
-    pub(crate) fn group_count(&self) -> u32 {
-        self.next_id
     }
 
     /// `other`'s entries, with at least `count` groups (groups created
@@ -160,6 +181,119 @@ impl GroupTable {
     pub(crate) fn remove_between_sets(&mut self, a: &[CollisionGroup], b: &[CollisionGroup]) {
         for &group in a {
             self.remove_with_set(group, b);
+        }
+    }
+}
+
+/// The table's verbs, as [`CollisionRuleSet`](super::super::CollisionRuleSet)
+/// has them.
+///
+/// # Panics
+///
+/// Each verb that takes a group panics if the group was not created by this
+/// table (nor is built in): a group of another table means nothing here.
+impl GroupTable {
+    /// A new group, distinct from every other group of this table.
+    pub fn create_group(&mut self) -> CollisionGroup {
+        self.create()
+    }
+
+    /// How many groups exist: the two built-in groups plus every created one.
+    #[must_use]
+    pub fn group_count(&self) -> u32 {
+        self.next_id
+    }
+
+    /// Sets the rule between two groups, in either order; `Defer` removes
+    /// the entry.
+    pub fn set_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup, rule: CollisionRule) {
+        self.check(&[a, b]);
+        self.set(a, b, rule);
+    }
+
+    /// The rule between two groups, in either order (`Defer` if none).
+    #[must_use]
+    pub fn group_rule(&self, a: CollisionGroup, b: CollisionGroup) -> CollisionRule {
+        self.get(a, b)
+    }
+
+    /// Removes the entry between two groups.
+    pub fn remove_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup) {
+        self.check(&[a, b]);
+        self.remove(a, b);
+    }
+
+    /// Each group of `set` with itself gets `self_rule`; each two distinct
+    /// groups of `set` get `other_rule`.
+    pub fn set_group_rules_in_set(
+        &mut self,
+        set: &[CollisionGroup],
+        self_rule: CollisionRule,
+        other_rule: CollisionRule,
+    ) {
+        self.check(set);
+        self.set_in_set(set, self_rule, other_rule);
+    }
+
+    /// Removes every entry between two groups of `set`, and of each with itself.
+    pub fn remove_group_rules_in_set(&mut self, set: &[CollisionGroup]) {
+        self.check(set);
+        self.remove_in_set(set);
+    }
+
+    /// `group` with every member of `set` gets `rule`.
+    pub fn set_group_rules_with_set(
+        &mut self,
+        group: CollisionGroup,
+        set: &[CollisionGroup],
+        rule: CollisionRule,
+    ) {
+        self.check(&[group]);
+        self.check(set);
+        self.set_with_set(group, set, rule);
+    }
+
+    /// Removes the entries of `group` with every member of `set`.
+    pub fn remove_group_rules_with_set(&mut self, group: CollisionGroup, set: &[CollisionGroup]) {
+        self.check(&[group]);
+        self.check(set);
+        self.remove_with_set(group, set);
+    }
+
+    /// Every member of `a` with every member of `b` gets `rule`.
+    pub fn set_group_rules_between_sets(
+        &mut self,
+        a: &[CollisionGroup],
+        b: &[CollisionGroup],
+        rule: CollisionRule,
+    ) {
+        self.check(a);
+        self.check(b);
+        self.set_between_sets(a, b, rule);
+    }
+
+    /// Removes the entries of every member of `a` with every member of `b`.
+    pub fn remove_group_rules_between_sets(&mut self, a: &[CollisionGroup], b: &[CollisionGroup]) {
+        self.check(a);
+        self.check(b);
+        self.remove_between_sets(a, b);
+    }
+
+    /// Every entry, each unordered pair once, in no particular order.
+    pub fn group_rules(
+        &self,
+    ) -> impl Iterator<Item = (CollisionGroup, CollisionGroup, CollisionRule)> + '_ {
+        self.iter()
+    }
+
+    /// Refuses groups this table did not create: a caller bug.
+    fn check(&self, groups: &[CollisionGroup]) {
+        for g in groups {
+            assert!(
+                g.id() < self.next_id,
+                "{g:?} was not created by this group table ({} groups exist)",
+                self.next_id
+            );
         }
     }
 }

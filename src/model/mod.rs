@@ -40,10 +40,13 @@ pub(crate) mod tombstones;
 
 pub use error::RuleError;
 pub use group::CollisionGroup;
+pub use group_table::GroupTable;
 pub use integrity::Problem;
 pub use node::Node;
 pub use rule::CollisionRule;
 pub use rule_set::CollisionRuleSet;
+#[cfg(feature = "serde")]
+pub use snapshot::{LoadError, SavedRuleSet};
 pub(crate) use body_kinds::{BodyKinds, dynamic_body, is_dynamic};
 pub(crate) use node::HandleMap;
 pub(crate) use records::Record;

@@ -43,8 +43,8 @@ use super::super::{CollisionGroup, CollisionRule, Node};
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
     serde(
-        into = "super::snapshot::Snapshot",
-        try_from = "super::snapshot::Snapshot"
+        into = "super::snapshot::SavedRuleSet",
+        try_from = "super::snapshot::SavedRuleSet"
     )
 )]
 pub struct CollisionRuleSet {
@@ -245,36 +245,47 @@ impl CollisionRuleSet {
         self.groups.group_count()
     }
 
-    /// Makes this set's group table and default rule those of `from`, and
-    /// its groups at least `from`'s (a group created here beyond `from`'s
-    /// count stays valid, its table entries do not). Nodes, entries and
-    /// links are untouched. For one table shared by several worlds, each
-    /// with its own rule set: groups created in `from` then mean the same
-    /// in every copy. Nothing is logged when the table and the default rule
-    /// were already `from`'s, so copying every frame costs no replanning.
+    /// The group table: the groups this set made and the rules between them.
+    #[must_use]
+    pub fn group_table(&self) -> &GroupTable {
+        &self.groups
+    }
+
+    /// Makes this set's group table `table` and its default rule
+    /// `default_rule`, and its groups at least `table`'s (a group created
+    /// here beyond `table`'s count stays valid, its table entries do not).
+    /// Nodes, entries and links are untouched. For one table shared by
+    /// several worlds, each with its own rule set: groups created in the
+    /// shared table then mean the same in every copy. Nothing is logged
+    /// when the table and the default rule were already these, so copying
+    /// every frame costs no replanning.
     ///
     /// ```
-    /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet};
+    /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, GroupTable};
     ///
-    /// let mut table = CollisionRuleSet::default();
+    /// let mut table = GroupTable::default();
     /// let (player, debris) = (table.create_group(), table.create_group());
     /// table.set_group_rule(player, debris, CollisionRule::NoPair);
-    /// table.set_default_rule(CollisionRule::NoResponse);
     ///
     /// let mut world_rules = CollisionRuleSet::default();
-    /// world_rules.copy_group_table(&table);
+    /// world_rules.copy_group_table(&table, CollisionRule::NoResponse);
     /// assert_eq!(world_rules.group_rule(debris, player), CollisionRule::NoPair);
     /// assert_eq!(world_rules.default_rule(), CollisionRule::NoResponse);
     /// assert_eq!(world_rules.group_count(), table.group_count());
+    /// // Another rule set's table serves as well.
+    /// let mut other = CollisionRuleSet::default();
+    /// other.copy_group_table(world_rules.group_table(), world_rules.default_rule());
+    /// assert_eq!(other.group_rule(player, debris), CollisionRule::NoPair);
     /// ```
-    pub fn copy_group_table(&mut self, from: &CollisionRuleSet) {
+    pub fn copy_group_table(&mut self, table: &GroupTable, default_rule: CollisionRule) {
         let count = self.groups.group_count();
-        let entries_changed = self.groups.copy_from(&from.groups, count);
-        if entries_changed || self.default_rule != from.default_rule {
-            self.default_rule = from.default_rule;
+        let entries_changed = self.groups.copy_from(table, count);
+        if entries_changed || self.default_rule != default_rule {
+            self.default_rule = default_rule;
             self.changes.everything();
         }
     }
+
 }
 
 impl CollisionRuleSet {

@@ -8,8 +8,47 @@ use serde::{Deserialize, Serialize};
 
 use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, RuleError};
 
+/// Why a saved rule set was refused: what no rule set of this crate holds,
+/// so what only a damaged or hand-edited save can say. A refused load builds
+/// nothing.
+#[non_exhaustive]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum LoadError {
+    /// The saved group count leaves no group to create.
+    #[error("saved group count {count}: no group could be created")]
+    GroupCount {
+        /// The saved count.
+        count: u32,
+    },
+    /// A group (of a node or of a table entry) past the saved count: a
+    /// later `create_group` would hand it out again.
+    #[error("saved group {} is past the group count {count}", group.id())]
+    GroupPastCount {
+        /// The group.
+        group: CollisionGroup,
+        /// The saved count.
+        count: u32,
+    },
+    /// A node in two records, or twice in one.
+    #[error("saved node {node:?} uses more than one record")]
+    SharedTwice {
+        /// The node.
+        node: Node,
+    },
+    /// A body with two parents.
+    #[error("saved body {child:?} has more than one parent")]
+    TwoParents {
+        /// The body.
+        child: RigidBodyHandle,
+    },
+    /// The parent map refused a saved link (a cycle, a body as its own
+    /// parent).
+    #[error("saved parent map: {0}")]
+    ParentMap(RuleError),
+}
+
 /// One rule record and the nodes that share it.
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 struct SavedRecord {
     users: Vec<Node>,
     personal: CollisionRule,
@@ -17,8 +56,29 @@ struct SavedRecord {
     specific: Vec<(Node, CollisionRule)>,
 }
 
-#[derive(Serialize, Deserialize)]
-pub(crate) struct Snapshot {
+/// A rule set as saved (feature `serde`): what a rule set serializes into,
+/// read back without being checked. Deserializing a [`CollisionRuleSet`]
+/// checks it at once and reports a refusal through the format's error as
+/// text; deserializing a `SavedRuleSet` and converting it with
+/// `CollisionRuleSet::try_from` gives the refusal as a typed [`LoadError`].
+///
+/// ```
+/// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, LoadError, SavedRuleSet};
+///
+/// let mut rules = CollisionRuleSet::default();
+/// let group = rules.create_group();
+/// rules.set_group_rule(group, group, CollisionRule::NoPair);
+/// let mut saved = serde_json::to_value(&rules).expect("saved");
+/// saved["group_rules"][0][0] = serde_json::json!(99); // damaged
+///
+/// let saved: SavedRuleSet = serde_json::from_value(saved).expect("well formed");
+/// match CollisionRuleSet::try_from(saved) {
+///     Err(LoadError::GroupPastCount { group, count }) => assert_eq!((group.id(), count), (99, 3)),
+///     other => panic!("{other:?}"),
+/// }
+/// ```
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SavedRuleSet {
     default_rule: CollisionRule,
     group_count: u32,
     group_rules: Vec<(CollisionGroup, CollisionGroup, CollisionRule)>,
@@ -26,8 +86,8 @@ pub(crate) struct Snapshot {
     parents: Vec<(RigidBodyHandle, RigidBodyHandle)>,
 }
 
-impl From<CollisionRuleSet> for Snapshot {
-    fn from(rules: CollisionRuleSet) -> Snapshot {
+impl From<CollisionRuleSet> for SavedRuleSet {
+    fn from(rules: CollisionRuleSet) -> SavedRuleSet {
         let mut records: Vec<(super::records::RecordId, SavedRecord)> = Vec::new();
         for node in rules.nodes() {
             let id = rules.record_id(node).expect("a listed node has a record");
@@ -37,7 +97,7 @@ impl From<CollisionRuleSet> for Snapshot {
                     let record = rules.records.get(id);
                     let mut specific: Vec<_> =
                         record.specific.iter().map(|(&n, &r)| (n, r)).collect();
-                    specific.sort_by_key(|(n, _)| sort_key(*n));
+                    specific.sort_by_key(|&(n, _)| n);
                     records.push((
                         id,
                         SavedRecord {
@@ -54,7 +114,7 @@ impl From<CollisionRuleSet> for Snapshot {
         group_rules.sort();
         let mut parents: Vec<_> = rules.parents().collect();
         parents.sort_by_key(|(c, _)| c.into_raw_parts());
-        Snapshot {
+        SavedRuleSet {
             default_rule: rules.default_rule(),
             group_count: rules.group_count(),
             group_rules,
@@ -64,35 +124,23 @@ impl From<CollisionRuleSet> for Snapshot {
     }
 }
 
-fn sort_key(node: Node) -> (u8, (u32, u32)) {
-    match node {
-        Node::Collider(h) => (0, h.into_raw_parts()),
-        Node::Body(h) => (1, h.into_raw_parts()),
-    }
-}
-
-impl Snapshot {
+impl SavedRuleSet {
     /// What no saved rule set of this crate holds: a group past the saved
     /// count (a later `create_group` would hand it out again), a node in two
     /// records or twice in one, a body with two parents. A parent cycle is
     /// refused by `set_parent` while loading. Checked before anything is
     /// built, so that a refused load is an error naming the problem, never a
     /// panic or a rule set that breaks later.
-    fn check(&self) -> Result<(), String> {
+    fn check(&self) -> Result<(), LoadError> {
         let count = self.group_count.max(2);
         if count == u32::MAX {
-            return Err(format!(
-                "saved group count {count}: no group could be created"
-            ));
+            return Err(LoadError::GroupCount { count });
         }
         let known = |g: CollisionGroup| {
             if g.id() < count {
                 Ok(())
             } else {
-                Err(format!(
-                    "saved group {} is past the group count {count}",
-                    g.id()
-                ))
+                Err(LoadError::GroupPastCount { group: g, count })
             }
         };
         for &(a, b, _) in &self.group_rules {
@@ -106,24 +154,24 @@ impl Snapshot {
             }
             for &user in &record.users {
                 if !users.insert(user) {
-                    return Err(format!("saved node {user:?} uses more than one record"));
+                    return Err(LoadError::SharedTwice { node: user });
                 }
             }
         }
         let mut children = hashbrown::HashSet::new();
         for &(child, _) in &self.parents {
             if !children.insert(child) {
-                return Err(format!("saved body {child:?} has more than one parent"));
+                return Err(LoadError::TwoParents { child });
             }
         }
         Ok(())
     }
 }
 
-impl TryFrom<Snapshot> for CollisionRuleSet {
-    type Error = String;
+impl TryFrom<SavedRuleSet> for CollisionRuleSet {
+    type Error = LoadError;
 
-    fn try_from(saved: Snapshot) -> Result<CollisionRuleSet, String> {
+    fn try_from(saved: SavedRuleSet) -> Result<CollisionRuleSet, LoadError> {
         saved.check()?;
         let mut rules = CollisionRuleSet::default();
         rules.groups.restore(saved.group_count, saved.group_rules);
@@ -149,7 +197,7 @@ impl TryFrom<Snapshot> for CollisionRuleSet {
                 // would forget it at the next step. Skipped, as entries
                 // about such objects are.
                 Ok(()) | Err(RuleError::Removed { .. }) => {}
-                Err(e) => return Err(format!("saved parent map: {e}")),
+                Err(e) => return Err(LoadError::ParentMap(e)),
             }
         }
         // Put in place of a rule set the hooks hold (`*hooks.rules_mut() =

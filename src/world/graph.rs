@@ -113,17 +113,28 @@ pub(crate) fn census(
     bodies: &RigidBodySet,
     colliders: &ColliderSet,
     narrow_phase: &NarrowPhase,
-) -> [usize; 6] {
+) -> Census {
     let (contacts, intersections) = (
         narrow_phase.contact_graph().raw_graph(),
         narrow_phase.intersection_graph().raw_graph(),
     );
-    [
-        colliders.len(),
-        bodies.len(),
-        contacts.raw_nodes().len(),
-        contacts.raw_edges().len(),
-        intersections.raw_nodes().len(),
-        intersections.raw_edges().len(),
-    ]
+    Census {
+        colliders: colliders.len(),
+        bodies: bodies.len(),
+        contact_nodes: contacts.raw_nodes().len(),
+        contact_edges: contacts.raw_edges().len(),
+        intersection_nodes: intersections.raw_nodes().len(),
+        intersection_edges: intersections.raw_edges().len(),
+    }
+}
+
+/// What [`census`] counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Census {
+    colliders: usize,
+    bodies: usize,
+    contact_nodes: usize,
+    contact_edges: usize,
+    intersection_nodes: usize,
+    intersection_edges: usize,
 }

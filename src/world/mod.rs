@@ -12,7 +12,7 @@ pub(crate) mod pair_key;
 pub(crate) mod settings;
 pub(crate) mod shapes;
 
-pub(crate) use graph::{Joints, census, filters_pass, pair_exists, partners_of, same_body};
+pub(crate) use graph::{Census, Joints, census, filters_pass, pair_exists, partners_of, same_body};
 pub(crate) use kinds::body_types;
 pub(crate) use pair_key::PairKey;
 pub(crate) use settings::{Settings, Written};

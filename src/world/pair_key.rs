@@ -12,6 +12,7 @@ use super::super::model::BodyKinds;
 pub(crate) struct PairKey(ColliderHandle, ColliderHandle);
 
 impl PairKey {
+    #[inline]
     pub(crate) fn new(a: ColliderHandle, b: ColliderHandle) -> PairKey {
         if a.into_raw_parts() <= b.into_raw_parts() {
             PairKey(a, b)
@@ -20,6 +21,7 @@ impl PairKey {
         }
     }
 
+    #[inline]
     pub(crate) fn colliders(self) -> (ColliderHandle, ColliderHandle) {
         (self.0, self.1)
     }

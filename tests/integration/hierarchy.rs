@@ -4,7 +4,7 @@
 //! lift it is parented to, and groups given to the lift still reach it.
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
+use proptest::test_runner::Config;
 
 use super::rapier::prelude::*;
 use super::rules::{CollisionRule, RuleHooks};
@@ -72,14 +72,7 @@ fn drive(world: &mut PhysicsWorld, bodies: &[RigidBodyHandle], step: usize) {
 }
 
 fn config(cases: u32) -> Config {
-    Config {
-        cases: super::world::env_or("PROPS_CASES", cases, |v| v.parse().ok()),
-        rng_seed: RngSeed::Fixed(super::world::env_or("PROPS_SEED", 0x1ff7_c0de, |v| {
-            u64::from_str_radix(v, 16).ok()
-        })),
-        failure_persistence: None,
-        ..Config::default()
-    }
+    super::world::props_config(cases, 0x1ff7_c0de)
 }
 
 proptest! {

@@ -5,7 +5,7 @@
 use super::rapier::prelude::*;
 use super::rules::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
+use proptest::test_runner::Config;
 
 use super::reference::Model;
 
@@ -393,17 +393,8 @@ impl Run {
     }
 }
 
-/// `cases` on a fixed seed; `PROPS_CASES` and `PROPS_SEED` (hex) try
-/// others.
 fn config(cases: u32) -> Config {
-    Config {
-        cases: super::world::env_or("PROPS_CASES", cases, |v| v.parse().ok()),
-        rng_seed: RngSeed::Fixed(super::world::env_or("PROPS_SEED", 0x5eed_c011_1de5, |v| {
-            u64::from_str_radix(v, 16).ok()
-        })),
-        failure_persistence: None,
-        ..Config::default()
-    }
+    super::world::props_config(cases, 0x5eed_c011_1de5)
 }
 
 proptest! {

@@ -232,17 +232,17 @@ fn a_shared_table_copied_every_step_plans_only_when_it_changes() {
     let mut scene = Scene::new();
     let (a, ca) = scene.cube(0.0, 0.5);
     let (w, _) = scene.cube(3.0, 0.5);
-    let mut table = super::rules::CollisionRuleSet::default();
+    let mut table = super::rules::GroupTable::default();
     let (ghosts, walls) = (table.create_group(), table.create_group());
     table.set_group_rule(ghosts, walls, NoResponse);
     let mut hooks = RuleHooks::default();
-    hooks.rules_mut().copy_group_table(&table);
+    hooks.rules_mut().copy_group_table(&table, Normal);
     hooks.rules_mut().set_group(a, Some(ghosts));
     hooks.rules_mut().set_group(w, Some(walls));
     hooks.step(&mut scene.world);
     assert!(hooks.stats().planned_colliders > 0, "the first step plans both");
     for _ in 0..5 {
-        hooks.rules_mut().copy_group_table(&table);
+        hooks.rules_mut().copy_group_table(&table, Normal);
         hooks.step(&mut scene.world);
         assert_eq!(
             hooks.stats().planned_colliders,
@@ -252,7 +252,7 @@ fn a_shared_table_copied_every_step_plans_only_when_it_changes() {
         );
     }
     table.set_group_rule(ghosts, walls, NoPair);
-    hooks.rules_mut().copy_group_table(&table);
+    hooks.rules_mut().copy_group_table(&table, Normal);
     hooks.step(&mut scene.world);
     assert_eq!(hooks.rules().group_rule(walls, ghosts), NoPair);
     assert_ne!(

@@ -71,8 +71,8 @@ pub use rapier_collision_rules;
 /// its [`RuleHooks`] take and give.
 pub use rapier_collision_rules::{
     CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
-    ManifoldUpdate, Node, PairCreated, Problem, RecalculationPolicy, RuleError, RuleHooks, Stage,
-    StepStats, WorldRef,
+    GroupTable, ManifoldUpdate, Node, PairCreated, Problem, RecalculationPolicy, RuleError,
+    RuleHooks, Stage, StepStats, WorldRef,
 };
 
 /// The plugin, the components and the rules' own types. `Node` is left

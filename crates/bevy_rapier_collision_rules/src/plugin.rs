@@ -197,7 +197,9 @@ fn share_table(
             None => (&*shared, shared.is_changed()),
         };
         if changed || rules.is_added() || dropped.contains(&context) {
-            rules.rules_mut().copy_group_table(table.as_rule_set());
+            rules
+                .rules_mut()
+                .copy_group_table(table.group_table(), table.default_rule());
         }
     }
 }

@@ -2,7 +2,7 @@
 //! or owned by one (`docs/bevy.md`).
 
 use bevy::prelude::*;
-use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet};
+use rapier_collision_rules::{CollisionGroup, CollisionRule, GroupTable};
 
 /// The group table and the default rule. As a resource it is the table of
 /// every physics context; a context entity that carries a
@@ -18,16 +18,25 @@ use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet};
 /// assert_eq!(table.group_rule(debris, player), CollisionRule::NoPair);
 /// assert_eq!(table.default_rule(), CollisionRule::Normal);
 /// ```
-#[derive(Resource, Clone, Debug, Default)]
+#[derive(Resource, Clone, Debug)]
 pub struct RuleTable {
-    /// Only its groups, table and default rule are used.
-    rules: CollisionRuleSet,
+    table: GroupTable,
+    default_rule: CollisionRule,
+}
+
+impl Default for RuleTable {
+    fn default() -> Self {
+        RuleTable {
+            table: GroupTable::default(),
+            default_rule: CollisionRule::Normal,
+        }
+    }
 }
 
 impl RuleTable {
     /// A new group, distinct from every other group of this table.
     pub fn create_group(&mut self) -> CollisionGroup {
-        self.rules.create_group()
+        self.table.create_group()
     }
 
     /// Sets the rule between two groups (either order); `Defer` removes it.
@@ -36,13 +45,13 @@ impl RuleTable {
     ///
     /// If a group was not created by this table (nor is built in).
     pub fn set_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup, rule: CollisionRule) {
-        self.rules.set_group_rule(a, b, rule);
+        self.table.set_group_rule(a, b, rule);
     }
 
     /// The rule between two groups, `Defer` where there is none.
     #[must_use]
     pub fn group_rule(&self, a: CollisionGroup, b: CollisionGroup) -> CollisionRule {
-        self.rules.group_rule(a, b)
+        self.table.group_rule(a, b)
     }
 
     /// Each group of `set` with itself gets `self_rule`, each two distinct
@@ -53,7 +62,7 @@ impl RuleTable {
         self_rule: CollisionRule,
         other_rule: CollisionRule,
     ) {
-        self.rules
+        self.table
             .set_group_rules_in_set(set, self_rule, other_rule);
     }
 
@@ -64,7 +73,7 @@ impl RuleTable {
         set: &[CollisionGroup],
         rule: CollisionRule,
     ) {
-        self.rules.set_group_rules_with_set(group, set, rule);
+        self.table.set_group_rules_with_set(group, set, rule);
     }
 
     /// Each group of `a` gets `rule` with each group of `b`.
@@ -74,23 +83,24 @@ impl RuleTable {
         b: &[CollisionGroup],
         rule: CollisionRule,
     ) {
-        self.rules.set_group_rules_between_sets(a, b, rule);
+        self.table.set_group_rules_between_sets(a, b, rule);
     }
 
     /// The rule of pairs no stage decides (`Normal` unless changed).
     pub fn set_default_rule(&mut self, rule: CollisionRule) {
-        self.rules.set_default_rule(rule);
+        self.default_rule = rule;
     }
 
     /// The rule of pairs no stage decides.
     #[must_use]
     pub fn default_rule(&self) -> CollisionRule {
-        self.rules.default_rule()
+        self.default_rule
     }
 
-    /// The table as a rule set, to copy into a context's.
-    pub(crate) fn as_rule_set(&self) -> &CollisionRuleSet {
-        &self.rules
+    /// The group table, as the main crate has it.
+    #[must_use]
+    pub fn group_table(&self) -> &GroupTable {
+        &self.table
     }
 }
 

@@ -96,14 +96,6 @@ fn heights(sim: &Sim, e: &Elevator) -> [f32; 4] {
     [e.platform, e.riding, e.mount, e.resting].map(|entity| sim.global_y(entity))
 }
 
-fn body(sim: &Sim, entity: Entity) -> bevy_rapier3d::rapier::prelude::RigidBodyHandle {
-    sim.app
-        .world()
-        .get::<RapierRigidBodyHandle>(entity)
-        .unwrap()
-        .0
-}
-
 #[test]
 fn crates_under_a_kinematic_platform_and_a_fixed_mount_move_as_in_plain_bevy_rapier() {
     let mut ruled = Sim::new();
@@ -123,7 +115,7 @@ fn crates_under_a_kinematic_platform_and_a_fixed_mount_move_as_in_plain_bevy_rap
     // The rules did follow the hierarchy: the comparison covers the parent
     // links that the wrong effective group came from.
     let links = [(a.riding, a.platform), (a.resting, a.mount)]
-        .map(|(child, parent)| (body(&ruled, child), body(&ruled, parent)));
+        .map(|(child, parent)| (ruled.body(child), ruled.body(parent)));
     let rules = ruled.rules().rules();
     for (child, parent) in links {
         assert_eq!(rules.parent(child), Some(parent), "the crate's parent");

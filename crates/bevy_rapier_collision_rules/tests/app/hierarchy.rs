@@ -4,17 +4,9 @@
 use CollisionRule::*;
 use bevy::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::prelude::{GravityScale, RapierRigidBodyHandle};
+use bevy_rapier3d::prelude::GravityScale;
 
 use super::scene::{Sim, ball, fell_through, floor};
-
-fn body(sim: &Sim, entity: Entity) -> bevy_rapier3d::rapier::prelude::RigidBodyHandle {
-    sim.app
-        .world()
-        .get::<RapierRigidBodyHandle>(entity)
-        .unwrap()
-        .0
-}
 
 #[test]
 fn a_limb_under_a_pelvis_takes_the_pelvis_rules_until_it_is_unparented() {
@@ -30,7 +22,7 @@ fn a_limb_under_a_pelvis_takes_the_pelvis_rules_until_it_is_unparented() {
     let limb = sim.spawn((ball(1.0, 0.0), ChildOf(pelvis)));
     let other = sim.spawn((ball(-2.0, 3.0), GravityScale(0.0)));
     sim.run(2);
-    let (p, l, o) = (body(&sim, pelvis), body(&sim, limb), body(&sim, other));
+    let (p, l, o) = (sim.body(pelvis), sim.body(limb), sim.body(other));
     assert_eq!(
         sim.rules().rules().parent(l),
         Some(p),
@@ -59,7 +51,7 @@ fn a_body_between_plain_entities_finds_its_nearest_body_ancestor() {
     let mount = sim.spawn((Transform::default(), ChildOf(chassis)));
     let wheel = sim.spawn((ball(1.0, 0.0), GravityScale(0.0), ChildOf(mount)));
     sim.run(2);
-    let (c, w) = (body(&sim, chassis), body(&sim, wheel));
+    let (c, w) = (sim.body(chassis), sim.body(wheel));
     assert_eq!(sim.rules().rules().parent(w), Some(c));
     // The chassis despawned with its descendants: nothing dangles.
     sim.app.world_mut().despawn(chassis);
@@ -89,7 +81,7 @@ fn without_the_hierarchy_the_parent_map_is_the_projects() {
     let pelvis = sim.spawn((ball(0.0, 3.0), GravityScale(0.0)));
     let limb = sim.spawn((ball(1.0, 0.0), ChildOf(pelvis)));
     sim.run(2);
-    let l = body(&sim, limb);
+    let l = sim.body(limb);
     assert_eq!(
         sim.rules().rules().parent(l),
         None,

@@ -95,6 +95,15 @@ impl Sim {
         self.at(entity).y
     }
 
+    /// The Rapier handle of an entity's rigid body.
+    pub fn body(&self, entity: Entity) -> bevy_rapier3d::rapier::prelude::RigidBodyHandle {
+        self.app
+            .world()
+            .get::<RapierRigidBodyHandle>(entity)
+            .unwrap()
+            .0
+    }
+
     /// The height of an entity that may sit under another in the hierarchy.
     pub fn global_y(&self, entity: Entity) -> f32 {
         let global = self.app.world().get::<GlobalTransform>(entity).unwrap();

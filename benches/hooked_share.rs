@@ -83,6 +83,7 @@ fn measure(n: usize, resting: bool, share: usize) -> Point {
         world,
         hooks: RuleHooks::new(rules),
         control: false,
+        churn: None,
     };
     twins.plan_alike();
     twins.time(2, true);

@@ -34,13 +34,14 @@ mod common;
 #[path = "common/space3.rs"]
 mod space;
 
+use std::collections::VecDeque;
 use std::fmt::Write as _;
 use std::time::Duration;
 
-use common::{Twins, pile, specific_rules};
+use common::{Churn, Twins, pile, specific_rules};
 use criterion::{BenchmarkId, Criterion, criterion_group};
 use plotters::prelude::*;
-use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
+use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks};
 use rapier3d::prelude::*;
 
 const SIZES: [usize; 4] = [1_000, 4_000, 16_000, 64_000];
@@ -199,6 +200,203 @@ fn sleeping_pile(specific: bool) -> Scene {
     Scene { world, rules }
 }
 
+/// Shooters: ten fixed turrets on a floor, each firing a CCD ball from
+/// inside itself every step; a ball goes after 60 steps (600 alive). In the
+/// rules world each ball ignores its turret through
+/// `set_specific(ball, turret, NoPair)`; in the plain twin (and in the
+/// control's), hand-written collision groups keep balls and turrets apart.
+struct Shooters {
+    turrets: Vec<RigidBodyHandle>,
+    fired: VecDeque<RigidBodyHandle>,
+    step: u32,
+}
+
+/// The collision groups of a turret (`true`) or a ball set apart by hand.
+fn apart(turret: bool) -> InteractionGroups {
+    let (member, other) = if turret {
+        (Group::GROUP_1, Group::GROUP_2)
+    } else {
+        (Group::GROUP_2, Group::GROUP_1)
+    };
+    InteractionGroups::new(member, Group::ALL - other, InteractionTestMode::And)
+}
+
+/// The floor and the turrets, set apart by hand from the balls in the plain
+/// twin (`by_hand`).
+fn shooters(by_hand: bool) -> (PhysicsWorld, Shooters) {
+    let mut world = PhysicsWorld::new();
+    let ground = world.insert_body(RigidBodyBuilder::fixed());
+    world.insert_collider(
+        ColliderBuilder::cuboid(200.0, 0.5, 200.0).translation(Vector::new(0.0, -0.5, 0.0)),
+        Some(ground),
+    );
+    let turrets = (0..10)
+        .map(|i| {
+            let turret = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(
+                i as f32 * 6.0 - 27.0,
+                1.0,
+                0.0,
+            )));
+            let mut collider = ColliderBuilder::cuboid(0.5, 1.0, 0.5);
+            if by_hand {
+                collider = collider.collision_groups(apart(true));
+            }
+            world.insert_collider(collider, Some(turret));
+            turret
+        })
+        .collect();
+    let fired = VecDeque::new();
+    (
+        world,
+        Shooters {
+            turrets,
+            fired,
+            step: 0,
+        },
+    )
+}
+
+impl Churn for Shooters {
+    fn apply(&mut self, world: &mut PhysicsWorld, mut rules: Option<&mut CollisionRuleSet>) {
+        self.step += 1;
+        for (i, &turret) in self.turrets.iter().enumerate() {
+            let from = world.bodies[turret].translation() + Vector::new(0.0, 0.5, 0.0);
+            let angle = self.step as f32 * 0.7 + i as f32;
+            let aim = Vector::new(angle.cos(), 0.3, angle.sin()) * 30.0;
+            let ball = world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .translation(from)
+                    .linvel(aim)
+                    .ccd_enabled(true),
+            );
+            let mut collider = ColliderBuilder::ball(0.1);
+            match rules.as_deref_mut() {
+                Some(rules) => rules.set_specific(ball, turret, CollisionRule::NoPair),
+                None => collider = collider.collision_groups(apart(false)),
+            }
+            world.insert_collider(collider, Some(ball));
+            self.fired.push_back(ball);
+        }
+        while self.fired.len() > 600 {
+            let old = self.fired.pop_front().expect("a ball");
+            world.remove_body(old);
+        }
+    }
+}
+
+/// A streamed level: every step a chunk comes in (40 fixed tiles, each its
+/// own body, and 10 dynamic boxes over them) in the slot of the oldest
+/// chunk, which goes; 10 chunks (500 bodies) alive. In the rules world the
+/// chunk gets rules that leave the physics as it is: its tiles a group that
+/// ignores the group of a far marker, half its boxes a personal `Normal`,
+/// and with `specific` two boxes a specific `NoResponse` about the marker.
+struct Stream {
+    step: u32,
+    chunks: VecDeque<Vec<RigidBodyHandle>>,
+    marker: RigidBodyHandle,
+    chunk_group: CollisionGroup,
+    specific: bool,
+}
+
+/// The stream's world, with its marker far away, and the rules: the chunk
+/// group, and the marker in a group it ignores.
+fn stream(specific: bool) -> (PhysicsWorld, CollisionRuleSet, Stream) {
+    let mut world = PhysicsWorld::new();
+    let marker =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(1e4, 0.0, 0.0)));
+    world.insert_collider(ColliderBuilder::ball(0.5), Some(marker));
+    let mut rules = CollisionRuleSet::default();
+    let (chunk_group, far) = (rules.create_group(), rules.create_group());
+    rules.set_group(marker, Some(far));
+    rules.set_group_rule(chunk_group, far, CollisionRule::NoPair);
+    let stream = Stream {
+        step: 0,
+        chunks: VecDeque::new(),
+        marker,
+        chunk_group,
+        specific,
+    };
+    (world, rules, stream)
+}
+
+impl Churn for Stream {
+    fn apply(&mut self, world: &mut PhysicsWorld, mut rules: Option<&mut CollisionRuleSet>) {
+        if self.chunks.len() == 10 {
+            for body in self.chunks.pop_front().expect("a chunk") {
+                world.remove_body(body);
+            }
+        }
+        let slot = (self.step % 10) as f32 * 12.0;
+        self.step += 1;
+        let mut chunk = Vec::with_capacity(50);
+        for i in 0..40 {
+            let (x, z) = ((i % 8) as f32 * 1.0 + slot, (i / 8) as f32 * 1.0);
+            let tile =
+                world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(x, 0.0, z)));
+            world.insert_collider(ColliderBuilder::cuboid(0.5, 0.25, 0.5), Some(tile));
+            if let Some(rules) = rules.as_deref_mut() {
+                rules.set_group(tile, Some(self.chunk_group));
+            }
+            chunk.push(tile);
+        }
+        for i in 0..10 {
+            let (x, z) = (
+                (i % 5) as f32 * 1.5 + slot + 0.5,
+                (i / 5) as f32 * 2.0 + 1.0,
+            );
+            let body =
+                world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(x, 1.0, z)));
+            world.insert_collider(ColliderBuilder::cuboid(0.3, 0.3, 0.3), Some(body));
+            if let Some(rules) = rules.as_deref_mut() {
+                if i % 2 == 0 {
+                    rules.set_personal(body, CollisionRule::Normal);
+                }
+                if self.specific && i < 2 {
+                    rules.set_specific(body, self.marker, CollisionRule::NoResponse);
+                }
+            }
+            chunk.push(body);
+        }
+        self.chunks.push_back(chunk);
+    }
+}
+
+/// The twins of a world that changes every step, warmed up for 120 steps
+/// (the balls and chunks at their full count).
+fn churn_twins(scene: &str, control: bool) -> Twins {
+    let (plain, world, rules, churn): (_, _, _, [Box<dyn Churn>; 2]) = match scene {
+        "shooters" => {
+            let (plain, plain_churn) = shooters(true);
+            let (world, churn) = shooters(control);
+            let churn: [Box<dyn Churn>; 2] = [Box::new(plain_churn), Box::new(churn)];
+            (plain, world, CollisionRuleSet::default(), churn)
+        }
+        _ => {
+            let specific = scene == "stream";
+            let (plain, _, plain_churn) = stream(specific);
+            let (world, rules, churn) = stream(specific);
+            let churn: [Box<dyn Churn>; 2] = [Box::new(plain_churn), Box::new(churn)];
+            let rules = if control {
+                CollisionRuleSet::default()
+            } else {
+                rules
+            };
+            (plain, world, rules, churn)
+        }
+    };
+    let mut twins = Twins {
+        plain,
+        world,
+        hooks: RuleHooks::new(rules),
+        control,
+        churn: Some(churn),
+    };
+    twins.plan_alike();
+    twins.time(60, true);
+    twins.time(60, false);
+    twins
+}
+
 /// A scene's two worlds: plain, and with the scene's rules.
 fn twins(make: &dyn Fn(bool) -> Scene, control: bool) -> Twins {
     let plain = make(false).world;
@@ -208,6 +406,7 @@ fn twins(make: &dyn Fn(bool) -> Scene, control: bool) -> Twins {
         world,
         hooks: RuleHooks::new(rules),
         control,
+        churn: None,
     };
     twins.plan_alike();
     // What is measured is the steady state.
@@ -317,15 +516,36 @@ fn worlds(c: &mut Criterion) {
     group.finish();
 }
 
+/// The worlds that change every step: a name, the objects alive, and the
+/// scene (`docs/performance.md`, "Worlds that change").
+const CHURN: [(&str, usize, &str); 5] = [
+    ("churn/control", 600, "shooters"),
+    ("churn/shooters", 600, "shooters"),
+    ("churn/stream-control", 500, "stream-groups"),
+    ("churn/stream-groups", 500, "stream-groups"),
+    ("churn/stream", 500, "stream"),
+];
+
 fn paired() -> Result<(), Box<dyn std::error::Error>> {
     println!("paired runs (rules / plain: median [min, max] of 5; us per step in the median run):");
     let mut csv = String::from("scene,size,plain_us,rules_us,ratio_median,ratio_min,ratio_max\n");
     let mut rows = Vec::new();
-    for (name, n, make) in variants() {
+    let churn = CHURN.iter().map(|&(name, n, scene)| {
+        let control = name.ends_with("control");
+        (name.to_owned(), n, None, Some((scene, control)))
+    });
+    let idle = variants()
+        .into_iter()
+        .map(|(name, n, make)| (name, n, Some(make), None));
+    for (name, n, make, churned) in idle.chain(churn) {
         if !selected(&name) {
             continue;
         }
-        let mut twins = twins(&*make, name.ends_with("/control"));
+        let mut twins = match (make, churned) {
+            (Some(make), _) => twins(&*make, name.ends_with("/control")),
+            (None, Some((scene, control))) => churn_twins(scene, control),
+            (None, None) => unreachable!("every variant is idle or changes"),
+        };
         let p = twins.paired();
         let stats = twins.hooks.stats();
         println!(

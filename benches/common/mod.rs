@@ -50,6 +50,14 @@ pub fn specific_rules(boxes: &[(RigidBodyHandle, usize)]) -> CollisionRuleSet {
     rules
 }
 
+/// What a world that changes every step does before each step: adds and
+/// removes objects, and (in the world with the rules, `rules` is `Some`)
+/// gives them rules. Applied to both twins in the same order, untimed, so
+/// that their handles stay the same.
+pub trait Churn {
+    fn apply(&mut self, world: &mut PhysicsWorld, rules: Option<&mut CollisionRuleSet>);
+}
+
 /// Two worlds stepped in lockstep: each measurement times one world's step
 /// and steps the other untimed, so that both stand at the same point of
 /// their (identical) evolution whenever either is measured.
@@ -59,6 +67,9 @@ pub struct Twins {
     pub hooks: RuleHooks,
     /// The control: both worlds stepped plainly, the noise floor of the method.
     pub control: bool,
+    /// For worlds that change every step: the plain twin's churn and the
+    /// rules world's, applied before every step of each.
+    pub churn: Option<[Box<dyn Churn>; 2]>,
 }
 
 impl Twins {
@@ -119,6 +130,11 @@ impl Twins {
     pub fn time(&mut self, iters: u64, rules: bool) -> Duration {
         let mut timed = Duration::ZERO;
         for _ in 0..iters {
+            if let Some([plain, ruled]) = &mut self.churn {
+                plain.apply(&mut self.plain, None);
+                let rules = (!self.control).then(|| self.hooks.rules_mut());
+                ruled.apply(&mut self.world, rules);
+            }
             let start = Instant::now();
             if rules && self.control {
                 self.world.step();

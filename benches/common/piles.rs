@@ -99,6 +99,7 @@ fn twins(variant: &str, n: usize) -> Twins {
         world,
         hooks,
         control: variant == "control",
+        churn: None,
     };
     twins.plan_alike();
     twins

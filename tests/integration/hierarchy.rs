@@ -72,7 +72,7 @@ fn drive(world: &mut PhysicsWorld, bodies: &[RigidBodyHandle], step: usize) {
 }
 
 fn config(cases: u32) -> Config {
-    super::world::props_config(cases, 0x1ff7_c0de)
+    super::properties::props_config(cases, 0x1ff7_c0de)
 }
 
 proptest! {

@@ -394,7 +394,21 @@ impl Run {
 }
 
 fn config(cases: u32) -> Config {
-    super::world::props_config(cases, 0x5eed_c011_1de5)
+    props_config(cases, 0x5eed_c011_1de5)
+}
+
+/// Proptest's settings for `cases` cases on a fixed seed (`seed` unless
+/// `PROPS_SEED`, in hex, says another); `PROPS_CASES` sets another count.
+pub(super) fn props_config(cases: u32, seed: u64) -> Config {
+    use super::world::env_or;
+    Config {
+        cases: env_or("PROPS_CASES", cases, |v| v.parse().ok()),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(env_or("PROPS_SEED", seed, |v| {
+            u64::from_str_radix(v, 16).ok()
+        })),
+        failure_persistence: None,
+        ..Config::default()
+    }
 }
 
 proptest! {

@@ -670,15 +670,3 @@ pub fn env_or<T>(name: &str, default: T, parse: impl Fn(&str) -> Option<T>) -> T
         .and_then(|v| parse(&v))
         .unwrap_or(default)
 }
-
-/// Proptest's settings for `cases` cases on a fixed seed (`seed` unless
-/// `PROPS_SEED`, in hex, says another); `PROPS_CASES` sets another count.
-pub fn props_config(cases: u32, seed: u64) -> proptest::test_runner::Config {
-    use proptest::test_runner::{Config, RngSeed};
-    Config {
-        cases: env_or("PROPS_CASES", cases, |v| v.parse().ok()),
-        rng_seed: RngSeed::Fixed(env_or("PROPS_SEED", seed, |v| u64::from_str_radix(v, 16).ok())),
-        failure_persistence: None,
-        ..Config::default()
-    }
-}

@@ -65,15 +65,21 @@ impl GroupSettings {
                 entry.1 = true;
             }
         }
-        let mut awaiting = members.clone();
-        for (a, b, rule) in rules.groups.iter() {
-            if rule.is_decided() {
-                for g in [a, b] {
-                    awaiting.entry(g).or_insert((true, false));
+        // Most plans have no memberless group in the table: no copy then.
+        let memberless = |g: &CollisionGroup| !members.contains_key(g);
+        let waiting = rules
+            .groups
+            .iter()
+            .any(|(a, b, rule)| rule.is_decided() && (memberless(&a) || memberless(&b)));
+        if waiting {
+            let mut awaiting = members.clone();
+            for (a, b, rule) in rules.groups.iter() {
+                if rule.is_decided() {
+                    for g in [a, b] {
+                        awaiting.entry(g).or_insert((true, false));
+                    }
                 }
             }
-        }
-        if awaiting.len() > members.len() {
             let settings = GroupSettings::of_members(rules, awaiting, room);
             if settings.bits.len() == settings.involved.len() {
                 return settings;

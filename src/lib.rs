@@ -25,8 +25,8 @@ macro_rules! dimension {
         mod world;
 
         pub use hooks::{
-            CalculatorContext, FullPass, ManifoldUpdate, PairCreated, RecalculationPolicy,
-            RuleHooks, StepStats, WorldRef,
+            CalculatorContext, FullPass, ManifoldUpdate, PairCreated, PlanCause,
+            RecalculationPolicy, RuleHooks, StepStats, WorldRef,
         };
         pub use model::{
             CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable, Node, Problem, RuleError,

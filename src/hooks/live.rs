@@ -12,7 +12,7 @@ use std::sync::PoisonError;
 
 use super::super::rapier::prelude::*;
 
-use super::{ManifoldUpdate, PairKey, PairState, RuleHooks};
+use super::{ManifoldUpdate, PairKey, PairState, PlanCause, RuleHooks};
 use super::super::model::BodyKinds;
 use super::super::world::{Joints, filters_pass, pair_exists};
 use super::super::{CollisionRule, Node};
@@ -239,7 +239,7 @@ impl RuleHooks {
             return false;
         };
         edit(state);
-        self.queued.replan = true;
+        self.queued.replan = Some(PlanCause::PinnedPair);
         self.wake_pair(a, b);
         true
     }

@@ -41,7 +41,7 @@ use super::{CollisionRule, CollisionRuleSet, Node};
 pub use pair_state::ManifoldUpdate;
 pub(crate) use pair_state::{PairState, PairTable};
 pub(crate) use super::world::PairKey;
-pub use stats::{FullPass, StepStats};
+pub use stats::{FullPass, PlanCause, StepStats};
 pub use live::WorldRef;
 use roster::Roster;
 
@@ -193,8 +193,9 @@ struct Queued {
     wake_colliders: Vec<ColliderHandle>,
     /// Colliders to plan again before the next step (a partial plan).
     candidates: Vec<ColliderHandle>,
-    /// Something the plan depends on changed: plan again before the next step.
-    replan: bool,
+    /// Something the whole plan depends on changed: plan again before the
+    /// next step, for this reason.
+    replan: Option<PlanCause>,
     /// Colliders whose groups the last plan changed. Rapier drops and finds
     /// their pairs again, so their table entries outlive one absence.
     regrouped: HashSet<ColliderHandle>,
@@ -270,7 +271,7 @@ impl RuleHooks {
                 to_wake: Vec::new(),
                 wake_colliders: Vec::new(),
                 candidates: Vec::new(),
-                replan: true,
+                replan: Some(PlanCause::FirstStep),
                 regrouped: HashSet::new(),
                 touched: Vec::new(),
             },
@@ -305,7 +306,7 @@ impl RuleHooks {
     /// Chooses when live pairs follow rule edits (default `OnChange`).
     pub fn set_policy(&mut self, policy: RecalculationPolicy) {
         self.decide.policy = policy;
-        self.queued.replan = true;
+        self.queued.replan = Some(PlanCause::HookSettings);
     }
 
     /// Turns the planner on (the default) or off. On, colliders whose pairs
@@ -322,7 +323,7 @@ impl RuleHooks {
     /// collider the rules no longer reach gets the project's settings back.
     pub fn set_planner(&mut self, enabled: bool) {
         self.planned.enabled = enabled;
-        self.queued.replan = true;
+        self.queued.replan = Some(PlanCause::HookSettings);
     }
 
     /// The tests' oracle: with `true`, every step looks at every collider,
@@ -337,10 +338,7 @@ impl RuleHooks {
     /// The project's own settings of `collider`: what it has now, except
     /// where the crate wrote and the project has not changed them since.
     pub(crate) fn own_settings(&self, handle: ColliderHandle, collider: &Collider) -> Settings {
-        let now = Settings::of(collider);
-        self.planned.written
-            .get(handle)
-            .map_or(now, |written| written.own_as_of(now))
+        own_settings(&self.planned.written, handle, collider)
     }
 
     /// Whether the planner is on (see [`set_planner`](Self::set_planner)).
@@ -396,7 +394,7 @@ impl RuleHooks {
     /// planned again (calculators and callbacks need every pair hooked).
     fn decision_changed(&mut self) {
         self.queued.recalculate_all = true;
-        self.queued.replan = true;
+        self.queued.replan = Some(PlanCause::HookSettings);
     }
 
     /// Registers the pair-created callback (the BEPU design's immediate
@@ -498,7 +496,7 @@ impl RuleHooks {
     /// next step reads every collider's settings, plans again and
     /// recalculates the hooked pairs.
     pub fn project_settings_changed(&mut self) {
-        self.queued.replan = true;
+        self.queued.replan = Some(PlanCause::ProjectSettings);
         // The kinematic entry gives way to the project's types: a pair's
         // rule may follow a type changed on either of its colliders.
         self.queued.recalculate_all = true;
@@ -533,11 +531,24 @@ impl RuleHooks {
             self.planned.roster.wrote(handle, None);
         }
         self.planned.written = HandleMap::default();
-        self.queued.replan = true;
+        self.queued.replan = Some(PlanCause::ProjectSettings);
     }
 
     /// Removes the project's hooks and gives them back.
     pub fn remove_user_hooks(&mut self) -> Option<Box<dyn PhysicsHooks + Send + Sync>> {
         self.decide.user.take()
     }
+}
+
+/// The project's own settings of a collider, given what the crate wrote
+/// (`docs/semantics.md`, "The project's own settings").
+pub(crate) fn own_settings(
+    written: &HandleMap<ColliderHandle, Written>,
+    handle: ColliderHandle,
+    collider: &Collider,
+) -> Settings {
+    let now = Settings::of(collider);
+    written
+        .get(handle)
+        .map_or(now, |written| written.own_as_of(now))
 }

@@ -6,7 +6,9 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use hashbrown::HashMap;
-use super::super::rapier::prelude::{Pose, RigidBodyHandle, RigidBodySet, SolverContact, Vector};
+use super::super::rapier::prelude::{
+    ColliderHandle, Pose, RigidBodyHandle, RigidBodySet, SolverContact, Vector,
+};
 
 use super::super::CollisionRule;
 use super::super::model::BodyKinds;
@@ -143,10 +145,16 @@ impl PairState {
 }
 
 /// The live-pair table. Pairs whose rule is `NoPair` stay in it (so that the
-/// hook keeps refusing them) but are not live for the user.
+/// hook keeps refusing them) but are not live for the user. Each collider's
+/// pairs are indexed, so that an edit or a removal costs the pairs of the
+/// colliders it reaches, not a pass over the table (`docs/architecture.md`,
+/// "Cost per step").
 #[derive(Debug, Default)]
 pub(crate) struct PairTable {
     pairs: HashMap<PairKey, PairState>,
+    /// Each collider's pairs in the table (a few each: a hooked collider's
+    /// neighbours).
+    by_collider: HashMap<ColliderHandle, Vec<PairKey>>,
 }
 
 impl PairTable {
@@ -160,11 +168,57 @@ impl PairTable {
     }
 
     pub(crate) fn insert(&mut self, key: PairKey, state: PairState) {
-        self.pairs.insert(key, state);
+        if self.pairs.insert(key, state).is_none() {
+            let (a, b) = key.colliders();
+            self.by_collider.entry(a).or_default().push(key);
+            self.by_collider.entry(b).or_default().push(key);
+        }
     }
 
     pub(crate) fn retain(&mut self, mut keep: impl FnMut(PairKey, &mut PairState) -> bool) {
-        self.pairs.retain(|key, state| keep(*key, state));
+        let mut dropped = Vec::new();
+        self.pairs.retain(|key, state| {
+            let kept = keep(*key, state);
+            if !kept {
+                dropped.push(*key);
+            }
+            kept
+        });
+        for key in dropped {
+            self.unindex(key);
+        }
+    }
+
+    /// Forgets every pair of `collider`.
+    pub(crate) fn remove_collider(&mut self, collider: ColliderHandle) {
+        for key in self.by_collider.remove(&collider).unwrap_or_default() {
+            self.pairs.remove(&key);
+            let (a, b) = key.colliders();
+            let other = if a == collider { b } else { a };
+            self.unlink(other, key);
+        }
+    }
+
+    /// The pairs of `collider` in the table.
+    pub(crate) fn keys_of(&self, collider: ColliderHandle) -> &[PairKey] {
+        self.by_collider.get(&collider).map_or(&[], Vec::as_slice)
+    }
+
+    fn unindex(&mut self, key: PairKey) {
+        let (a, b) = key.colliders();
+        self.unlink(a, key);
+        self.unlink(b, key);
+    }
+
+    fn unlink(&mut self, collider: ColliderHandle, key: PairKey) {
+        if let Some(keys) = self.by_collider.get_mut(&collider) {
+            if let Some(i) = keys.iter().position(|&k| k == key) {
+                keys.swap_remove(i);
+            }
+            if keys.is_empty() {
+                self.by_collider.remove(&collider);
+            }
+        }
     }
 
     #[inline]

@@ -8,9 +8,19 @@ use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
 use super::step::missing;
-use super::{ManifoldUpdate, PairKey, RecalculationPolicy, RuleHooks};
-use super::super::planner;
-use super::super::{FullPass, Node, StepStats};
+use super::{ManifoldUpdate, PairKey, PlanCause, RecalculationPolicy, RuleHooks};
+use super::super::planner::{self, room::Room};
+use super::super::{CollisionRule, FullPass, Node, StepStats};
+
+/// What the edits and the look found changed before a step.
+struct Changed {
+    /// Nodes whose colliders are planned again and whose pairs follow.
+    nodes: Vec<Node>,
+    /// Colliders the hooks saw for the first time.
+    added: Vec<ColliderHandle>,
+    /// An edit that can reach any pair (the policy recalculates all).
+    everything: bool,
+}
 
 /// Before the step.
 impl RuleHooks {
@@ -23,11 +33,102 @@ impl RuleHooks {
     /// [`wake_edited`](Self::wake_edited) next, then step with these hooks,
     /// then [`after_step`](Self::after_step).
     ///
+    /// Where Rapier's narrow phase is at hand, prefer
+    /// [`prepare_with_graph`](Self::prepare_with_graph), as
+    /// [`step`](Self::step) does: it hooks the side of a specific entry that
+    /// has fewer pairs.
+    ///
     /// # Panics
     ///
     /// If Rapier stepped with these hooks since the last `prepare` and
     /// [`after_step`](Self::after_step) was not called after it.
     pub fn prepare(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+        self.prepare_seeing(bodies, colliders, None);
+    }
+
+    /// [`prepare`](Self::prepare), choosing the side of each specific entry
+    /// to hook by the pairs each side has in `narrow_phase` now: a fixed
+    /// pickup that touches nothing carries its own rule, a floor under a
+    /// pile does not (`docs/architecture.md`, "The planner").
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed());
+    /// world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+    /// let car = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.0, 0.0)));
+    /// for x in [-0.5, 0.5] {
+    ///     world.insert_collider(ColliderBuilder::ball(0.5).translation(Vector::new(x, 0.0, 0.0)), Some(car));
+    /// }
+    /// let pickup = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(5.0, 1.0, 0.0)));
+    /// let coin = world.insert_collider(ColliderBuilder::ball(0.3), Some(pickup));
+    /// let mut hooks = RuleHooks::default();
+    /// for _ in 0..30 {
+    ///     hooks.step(&mut world);
+    /// }
+    /// // The car rests on the ground; the pickup touches nothing. NoContacts
+    /// // has no form in Rapier's groups: one side is hooked.
+    /// hooks.rules_mut().set_specific(car, pickup, CollisionRule::NoContacts);
+    /// let w = &mut world;
+    /// hooks.prepare_with_graph(&w.bodies, &mut w.colliders, &w.narrow_phase);
+    /// assert!(w.colliders[coin].active_hooks().contains(ActiveHooks::FILTER_CONTACT_PAIRS));
+    /// hooks.wake_edited(&mut w.islands, &mut w.bodies);
+    /// hooks.freeze_manifolds(&w.narrow_phase);
+    /// w.step_with_events(&hooks, &());
+    /// hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
+    /// assert_eq!(hooks.stats().hooked_colliders, 1, "the pickup carries the rule, not the car");
+    /// ```
+    ///
+    /// # Panics
+    ///
+    /// As [`prepare`](Self::prepare).
+    pub fn prepare_with_graph(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+        narrow_phase: &NarrowPhase,
+    ) {
+        self.prepare_seeing(bodies, colliders, Some(narrow_phase));
+    }
+
+    /// The phases of `prepare`, in order.
+    fn prepare_seeing(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+        graph: Option<&NarrowPhase>,
+    ) {
+        self.open_step();
+        let full = self.full_pass();
+        if self.planned.exhaustive {
+            self.queued.replan.get_or_insert(PlanCause::HookSettings);
+        }
+        if self.idle() {
+            return;
+        }
+        if full != self.planned.plan.full && (full.is_some() || self.planned.plan.full.is_some()) {
+            self.queued.replan.get_or_insert(PlanCause::HookSettings);
+        }
+        let mut changed = self.watch_edits(bodies, colliders);
+        self.look_at_watched(bodies, colliders, full, &mut changed);
+        let under = self.plan_changed(bodies, colliders, graph, &changed);
+        self.recalculate_changed(bodies, colliders, under, changed.everything);
+        for c in std::mem::take(&mut self.queued.wake_colliders) {
+            self.queued
+                .to_wake
+                .extend(colliders.get(c).and_then(|c| c.parent()));
+        }
+        self.stats.hooked_colliders = self.planned.hooked;
+        self.stats.full_pass = self.planned.plan.full;
+        self.stats.shares_project_bits = self.planned.plan.room.is_some();
+        self.stats.watched_colliders = self.planned.roster.collider_count();
+        self.stats.watched_bodies = self.planned.roster.body_count();
+    }
+
+    /// The step boundary: checks the last step was finished, counts this one.
+    fn open_step(&mut self) {
         if self.boundary.prepared && *self.boundary.stepped.get_mut() {
             missing("after_step", "after the last step");
         }
@@ -40,143 +141,194 @@ impl RuleHooks {
             tracked_pairs: self.pairs.len(),
             ..StepStats::default()
         };
-        let full = self.full_pass();
-        self.queued.replan |= self.planned.exhaustive;
-        if self.idle() {
-            return;
-        }
-        if full != self.planned.plan.full && (full.is_some() || self.planned.plan.full.is_some()) {
-            self.queued.replan = true;
-        }
+    }
 
-        // 1. What the edits touched starts being watched.
+    /// Phase 1: what the edits touched starts being watched.
+    fn watch_edits(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> Changed {
         let changes = self.decide.rules.take_changes();
-        // Re-parenting moves colliders from under one side of a specific
-        // entry to another: which side is cheaper to hook may change.
-        self.queued.replan |= changes.parents && self.decide.rules.has_specific();
-        let mut changed = match self.decide.rules.touched_nodes(&changes) {
-            // The first step reads the whole rule set: it may have been
-            // built, or loaded, before the hooks existed.
+        if changes.parents && self.decide.rules.has_specific() {
+            // The colliders under each side of an entry changed.
+            self.queued.replan.get_or_insert(PlanCause::ParentMap);
+        }
+        let nodes = match self.decide.rules.touched_nodes(&changes) {
             Some(nodes) if !self.planned.exhaustive && self.boundary.step > 1 => nodes,
-            // The nodes the edits touched stay in, rules or not: a node
-            // whose rules were just cleared has pairs to recalculate.
+            // The first step reads the whole rule set: it may have been
+            // built, or loaded, before the hooks existed. The nodes the
+            // edits touched stay in, rules or not: a node whose rules were
+            // just cleared has pairs to recalculate.
             touched => {
-                self.queued.replan = true;
+                let cause = if touched.is_none() && self.boundary.step > 1 {
+                    PlanCause::GlobalEdit
+                } else {
+                    PlanCause::FirstStep
+                };
+                self.queued.replan.get_or_insert(cause);
                 let mut nodes = self.decide.rules.ruled_nodes();
                 nodes.extend(touched.into_iter().flatten());
                 nodes
             }
         };
-        for &node in &changed {
+        for &node in nodes.iter().chain(changes.subjects()) {
             self.watch(bodies, colliders, node);
         }
+        // The decisions of entries the edits removed end, and what they said
+        // of the colliders under both nodes with them.
+        let mut ended = Vec::new();
+        for &node in &nodes {
+            let rules = &self.decide.rules;
+            ended.extend(self.planned.plan.decisions.forget_ended(node, |(x, y)| {
+                rules.specific(x, y) == CollisionRule::Defer
+                    && rules.specific(y, x) == CollisionRule::Defer
+            }));
+        }
+        let mut nodes = nodes;
+        nodes.extend(ended);
+        Changed {
+            nodes,
+            added: Vec::new(),
+            everything: changes.everything,
+        }
+    }
 
-        // 2. Look at what is watched: removals, changes, additions.
-        let everything = self.planned.plan.full.is_some() || full.is_some() || self.planned.exhaustive;
+    /// Phase 2: looks at what is watched (removals, changes, additions),
+    /// forgets what Rapier removed, and adds what changed to `changed`.
+    fn look_at_watched(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        full: Option<FullPass>,
+        changed: &mut Changed,
+    ) {
+        let everything =
+            self.planned.plan.full.is_some() || full.is_some() || self.planned.exhaustive;
         // Whether the rules still reach a watched object changes only with an
         // edit of it (marked by `watch`), or with a global one.
-        let ask_all = self.queued.replan;
+        let ask_all = self.queued.replan.is_some();
         let look = {
             let (rules, plan) = (&self.decide.rules, &self.planned.plan);
-            self.planned.roster
+            self.planned
+                .roster
                 .look(bodies, colliders, everything, ask_all, |node| {
                     reached(rules, plan, bodies, colliders, node)
                 })
         };
-        // Which side of a specific entry is cheaper to hook follows the
-        // colliders under each side and their bodies' types (asked before
-        // removed bodies leave the parent map).
-        self.queued.replan |= look
-            .left
-            .iter()
-            .map(|&b| Node::Body(b))
-            .chain(look.added.iter().map(|&c| Node::Collider(c)))
-            .chain(look.changed.iter().copied())
-            .any(|node| planner::touches_entries(&self.decide.rules, bodies, colliders, node));
-        self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
+        let ended = self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
+        changed.nodes.extend(ended);
         for &c in &look.released {
             self.planned.plan.colliders.remove(c);
         }
         if !(look.removed_colliders.is_empty() && look.released.is_empty()) {
             self.count_hooked();
         }
-        changed.extend(look.changed);
+        changed.nodes.extend(look.changed);
         // Forgetting a removed parent changes its children's chains.
         let removal_changes = self.decide.rules.take_changes();
         if let Some(more) = self.decide.rules.touched_nodes(&removal_changes) {
-            changed.extend(more);
+            changed.nodes.extend(more);
         }
-        // The project changed a setting the plan is combined with, or
-        // colliders came or went in a world whose plan shares bits or types
-        // with every collider's project settings: plan again.
-        let recount = self
-            .planned
-            .plan
-            .room
-            .is_some_and(|(_, count)| count != colliders.len());
-        if recount || !look.project_changed.is_empty() {
-            self.queued.replan = true;
+        if !look.project_changed.is_empty() {
+            self.queued.replan.get_or_insert(PlanCause::ProjectSettings);
         }
         // A project setting can change a pair's rule (the kinematic entry
         // gives way to wider types): those colliders' pairs are recalculated.
-        changed.extend(look.project_changed.iter().map(|&c| Node::Collider(c)));
+        changed
+            .nodes
+            .extend(look.project_changed.iter().map(|&c| Node::Collider(c)));
+        changed.added = look.added;
+        self.check_room(colliders);
+    }
 
-        // 3. Plan the colliders under every changed node, and those newly
-        // watched (a collider moved onto a watched body may have hooked pairs
-        // whose rule its new chain changes).
-        let mut under: HashSet<ColliderHandle> = look.added.iter().copied().collect();
-        self.queued.candidates.extend(look.added);
-        for &node in &changed {
+    /// Colliders came or went in a world whose plan shares group bits or
+    /// collision types with every collider's project settings: the room
+    /// those settings leave is read again (a read of each collider, no
+    /// planning), and the plan made again only if the room no longer holds
+    /// the one it was made in (`docs/architecture.md`, "Cost per step").
+    fn check_room(&mut self, colliders: &ColliderSet) {
+        let Some((room, count)) = self.planned.plan.room else {
+            return;
+        };
+        if count == colliders.len() || self.queued.replan.is_some() {
+            return;
+        }
+        let now = Room::of_world(colliders, |h, c| self.own_settings(h, c));
+        if now.contains(room) {
+            self.planned.plan.room = Some((room, colliders.len()));
+        } else {
+            self.queued.replan.get_or_insert(PlanCause::ProjectSettings);
+        }
+    }
+
+    /// Phase 3: plans the colliders under every changed node, and those
+    /// newly watched (a collider moved onto a watched body may have hooked
+    /// pairs whose rule its new chain changes); the whole plan again where
+    /// something it depends on changed. Returns the colliders under the
+    /// changed nodes, whose pairs follow.
+    fn plan_changed(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+        graph: Option<&NarrowPhase>,
+        changed: &Changed,
+    ) -> HashSet<ColliderHandle> {
+        let mut under: HashSet<ColliderHandle> = changed.added.iter().copied().collect();
+        self.queued.candidates.extend(changed.added.iter().copied());
+        for &node in &changed.nodes {
             under.extend(self.colliders_under(node, bodies, colliders));
         }
         // Their pairs may have changed in Rapier too: looked up after the step.
         self.queued.touched.extend(under.iter().copied());
-        self.queued.touched.extend(self.queued.candidates.iter().copied());
-        if self.queued.replan {
-            self.apply_plan(bodies, colliders);
+        self.queued
+            .touched
+            .extend(self.queued.candidates.iter().copied());
+        if let Some(cause) = self.queued.replan {
+            self.apply_plan(bodies, colliders, graph, cause);
         } else {
             self.queued.candidates.extend(under.iter().copied());
             if !self.queued.candidates.is_empty() {
-                self.apply_partial_plan(bodies, colliders);
+                self.apply_partial_plan(bodies, colliders, graph);
             }
         }
+        under
+    }
 
-        // 4. Recalculate live pairs as the policy says.
+    /// Phase 4: recalculates live pairs as the policy says: those of the
+    /// colliders under the changed nodes (`affected`), every pair after an
+    /// edit that reaches any, and the pairs of forced nodes.
+    fn recalculate_changed(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+        affected: HashSet<ColliderHandle>,
+        everything_changed: bool,
+    ) {
         let mut drop_overrides = HashSet::new();
         for node in std::mem::take(&mut self.queued.forced) {
             drop_overrides.extend(self.colliders_under(node, bodies, colliders));
         }
-        let everything = self.decide.policy == RecalculationPolicy::EveryStep
-            || (self.decide.policy == RecalculationPolicy::OnChange
-                && (changes.everything || std::mem::take(&mut self.queued.recalculate_all)));
-        let mut affected = HashSet::new();
-        if self.decide.policy == RecalculationPolicy::OnChange && !everything {
-            affected = under;
-        }
-        if self.decide.policy == RecalculationPolicy::Manual {
+        let policy = self.decide.policy;
+        let everything = policy == RecalculationPolicy::EveryStep
+            || (policy == RecalculationPolicy::OnChange
+                && (everything_changed || std::mem::take(&mut self.queued.recalculate_all)));
+        if policy == RecalculationPolicy::Manual {
             self.queued.recalculate_all = false;
         }
-        if everything || !affected.is_empty() || !drop_overrides.is_empty() {
-            let refresh =
-                self.recalculate(bodies, colliders, everything, &affected, &drop_overrides);
-            for handle in refresh {
-                if let Some(collider) = colliders.get_mut(handle) {
-                    let groups = collider.collision_groups();
-                    collider.set_collision_groups(InteractionGroups::none());
-                    collider.set_collision_groups(groups);
-                    self.queued.regrouped.insert(handle);
-                }
+        let affected = if policy == RecalculationPolicy::OnChange && !everything {
+            affected
+        } else {
+            HashSet::new()
+        };
+        if !(everything || !affected.is_empty() || !drop_overrides.is_empty()) {
+            return;
+        }
+        let refresh = self.recalculate(bodies, colliders, everything, &affected, &drop_overrides);
+        for handle in refresh {
+            if let Some(collider) = colliders.get_mut(handle) {
+                let groups = collider.collision_groups();
+                collider.set_collision_groups(InteractionGroups::none());
+                collider.set_collision_groups(groups);
+                self.queued.regrouped.insert(handle);
             }
         }
-        for c in std::mem::take(&mut self.queued.wake_colliders) {
-            self.queued.to_wake
-                .extend(colliders.get(c).and_then(|c| c.parent()));
-        }
-        self.stats.hooked_colliders = self.planned.hooked;
-        self.stats.full_pass = self.planned.plan.full;
-        self.stats.shares_project_bits = self.planned.plan.room.is_some();
-        self.stats.watched_colliders = self.planned.roster.collider_count();
-        self.stats.watched_bodies = self.planned.roster.body_count();
     }
 
     /// Whether the rules reach nothing and nothing waits: the common case
@@ -187,7 +339,7 @@ impl RuleHooks {
             && self.planned.roster.body_count() == 0
             && self.pairs.is_empty()
             && self.planned.plan.full.is_none()
-            && !self.queued.replan
+            && self.queued.replan.is_none()
             && !self.decide.rules.has_changes()
             && self.queued.candidates.is_empty()
             && self.queued.forced.is_empty()
@@ -238,34 +390,41 @@ impl RuleHooks {
     }
 
     /// Forgets objects Rapier removed: their rules, the entries naming
-    /// them, their parent links, their plan and their pairs. A handle Rapier
-    /// reuses therefore starts with no rules.
+    /// them, their parent links, their plan, their pairs and the decisions
+    /// of their entries. A handle Rapier reuses therefore starts with no
+    /// rules. Returns the nodes on the other side of those entries, whose
+    /// colliders are planned again.
     fn forget_removed(
         &mut self,
         bodies: &RigidBodySet,
         removed: &[(ColliderHandle, Option<RigidBodyHandle>)],
         removed_bodies: &[RigidBodyHandle],
-    ) {
-        if !removed.is_empty() {
-            let gone: HashSet<ColliderHandle> = removed.iter().map(|r| r.0).collect();
-            self.pairs.retain(|key, _| {
-                let (a, b) = key.colliders();
-                !gone.contains(&a) && !gone.contains(&b)
-            });
-        }
+    ) -> Vec<Node> {
+        let mut gone: Vec<Node> = Vec::new();
         for &(handle, body) in removed {
+            self.pairs.remove_collider(handle);
             self.decide.rules.remove_node(handle);
             self.planned.plan.colliders.remove(handle);
             self.planned.written.remove(handle);
+            gone.push(Node::Collider(handle));
             // A body that keeps other colliders is in the look's `left`.
             if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
                 self.decide.rules.remove_node(body);
+                gone.push(Node::Body(body));
             }
         }
         for &body in removed_bodies {
             self.decide.rules.remove_node(body);
+            gone.push(Node::Body(body));
         }
         self.stats.removed_objects = removed.len() + removed_bodies.len();
+        // A removed object's entries end, and what their decisions said of
+        // the colliders on their other side.
+        let mut ended = Vec::new();
+        for node in gone {
+            ended.extend(self.planned.plan.decisions.forget_ended(node, |_| true));
+        }
+        ended
     }
 
     /// The pinned pairs: an override or a manifold setting keeps them hooked.
@@ -276,10 +435,7 @@ impl RuleHooks {
             .filter(|(_, s)| s.overridden.is_some() || s.manifold != ManifoldUpdate::ByRule)
             .map(|(k, _)| k)
             .collect();
-        pinned.sort_unstable_by_key(|k| {
-            let (a, b) = k.colliders();
-            (a.into_raw_parts(), b.into_raw_parts())
-        });
+        pinned.sort_unstable();
         pinned
     }
 }

@@ -4,7 +4,7 @@
 use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
-use super::RuleHooks;
+use super::{PairKey, RuleHooks};
 use super::super::Node;
 
 /// Recalculation.
@@ -32,8 +32,22 @@ impl RuleHooks {
         forced: &HashSet<ColliderHandle>,
     ) -> Vec<ColliderHandle> {
         let mut refresh = Vec::new();
+        // Everything, or the pairs of the colliders reached (through the
+        // table's index: an edit costs its colliders' pairs).
+        let keys: Vec<PairKey> = if everything {
+            self.pairs.iter().map(|(key, _)| key).collect()
+        } else {
+            let mut keys: Vec<PairKey> = affected
+                .iter()
+                .chain(forced)
+                .flat_map(|&c| self.pairs.keys_of(c).iter().copied())
+                .collect();
+            keys.sort_unstable();
+            keys.dedup();
+            keys
+        };
         let mut updates = Vec::new();
-        for (key, _) in self.pairs.iter() {
+        for key in keys {
             let (a, b) = key.colliders();
             // Rapier removed one of them (unwatched): the pair is forgotten
             // after the step and has nothing to wake.
@@ -41,17 +55,12 @@ impl RuleHooks {
                 continue;
             }
             let force = forced.contains(&a) || forced.contains(&b);
-            if force || everything || affected.contains(&a) || affected.contains(&b) {
-                updates.push((key, self.calculate(bodies, colliders, a, b), force));
-            }
+            updates.push((key, self.calculate(bodies, colliders, a, b), force));
         }
         self.stats.pairs_recalculated = updates.len();
         // The table's order is its hasher's, seeded per process: the
-        // wake-ups and nudges below reach Rapier in handle order instead.
-        updates.sort_unstable_by_key(|(key, _, _)| {
-            let (a, b) = key.colliders();
-            (a.into_raw_parts(), b.into_raw_parts())
-        });
+        // wake-ups and nudges below reach Rapier in the pair order instead.
+        updates.sort_unstable_by_key(|&(key, _, _)| key);
         for (key, computed, force) in updates {
             let state = self
                 .pairs

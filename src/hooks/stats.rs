@@ -24,6 +24,41 @@ pub enum FullPass {
     DefaultGroups,
 }
 
+/// Why the hooks planned every collider the rules reach again before a
+/// step, instead of only the colliders that step's changes reach
+/// (`docs/architecture.md`, "Cost per step"): the edits and changes that
+/// really change the whole plan.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum PlanCause {
+    /// The hooks' first step: the rule set may have been built, or loaded,
+    /// before the hooks existed.
+    FirstStep,
+    /// An edit that can reach any pair: the group table, the default rule,
+    /// a rule set put in place of the whole set, or a change log too long
+    /// to follow.
+    GlobalEdit,
+    /// A link of the parent map changed while specific entries exist: the
+    /// colliders under each side of an entry changed.
+    ParentMap,
+    /// A setting of the hooks changed: the policy, the planner, a
+    /// calculator, a pair-created callback, the project's own hooks, or a
+    /// full pass began or ended.
+    HookSettings,
+    /// The project's own settings changed: `project_settings_changed`,
+    /// `restore_project_settings`, a watched collider's settings changed
+    /// through Rapier, or colliders came with settings that take group bits
+    /// or collision types the plan gave away.
+    ProjectSettings,
+    /// A live pair's override or manifold setting changed: one of its
+    /// colliders is hooked.
+    PinnedPair,
+    /// A changed collider needs what only a whole plan gives: a class no
+    /// native collider had, a personal rule whose exactness depends on
+    /// every other collider's personal rules, or a pinned pair.
+    NewClass,
+}
+
 /// What the last step of a [`RuleHooks`](super::RuleHooks) did and cost:
 /// where to start when a world steps slower with the rules than without.
 ///
@@ -60,8 +95,12 @@ pub struct StepStats {
     /// Why every collider was looked at; `None` when only the reached ones were.
     pub full_pass: Option<FullPass>,
     /// Colliders whose flags, groups or collision types were planned before
-    /// the step (all reached ones after a global edit, a few after a local one).
+    /// the step (all reached ones after a whole plan, those the step's
+    /// changes reach otherwise).
     pub planned_colliders: usize,
+    /// Why every reached collider was planned before the step; `None` when
+    /// only those the step's changes reach were (or none).
+    pub full_plan: Option<PlanCause>,
     /// Pairs the hook answered during the step (each pair once, however
     /// many times it was asked).
     pub hooked_pairs_answered: usize,

@@ -34,6 +34,14 @@ impl RuleHooks {
 
     /// [`step`](Self::step), with Rapier's events sent to `events`.
     pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
+        if self.idle() {
+            // The same call as `world.step_with_events`, so that a world the
+            // rules do not reach steps as plainly as it can
+            // (`docs/performance.md`, "What the remaining cost is").
+            self.count_idle_step();
+            world.step_with_events(&*self, events);
+            return;
+        }
         self.step_pipeline(
             &mut world.physics_pipeline,
             world.gravity,
@@ -101,11 +109,9 @@ impl RuleHooks {
     ) {
         let idle = self.idle();
         if idle {
-            // No collider carries the hook flag: Rapier never calls the hook.
-            self.boundary.step += 1;
-            self.stats = StepStats::default();
+            self.count_idle_step();
         } else {
-            self.prepare(bodies, colliders);
+            self.prepare_with_graph(bodies, colliders, narrow_phase);
             self.freeze_manifolds(narrow_phase);
             self.wake_edited(islands, bodies);
         }
@@ -137,6 +143,14 @@ impl RuleHooks {
             multibody: multibody_joints,
         };
         self.finish_step(narrow_phase, bodies, colliders, Some(joints), quiet);
+    }
+
+    /// A step of a world the rules do not reach: no collider carries the
+    /// hook flag, so Rapier never calls the hook.
+    #[inline]
+    fn count_idle_step(&mut self) {
+        self.boundary.step += 1;
+        self.stats = StepStats::default();
     }
 
     /// Settles `ManifoldUpdate::Never` settings made since the last step

@@ -8,7 +8,7 @@ use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
 use super::step::missing;
-use super::{ManifoldUpdate, PairKey, PairState, RecalculationPolicy, RuleHooks};
+use super::{ManifoldUpdate, PairKey, PairState, PlanCause, RecalculationPolicy, RuleHooks};
 use super::super::CollisionRule;
 use super::super::planner::Plan;
 use super::super::world::{Joints, filters_pass, pair_exists, partners_of, same_body};
@@ -176,7 +176,9 @@ impl RuleHooks {
             }
             keep
         });
-        self.queued.replan |= never_ended;
+        if never_ended {
+            self.queued.replan.get_or_insert(PlanCause::PinnedPair);
+        }
         self.boundary.witness = witness;
         for (key, kinds) in retyped {
             let (a, b) = key.colliders();

@@ -3,8 +3,9 @@
 
 use super::super::rapier::prelude::*;
 
-use super::{ManifoldUpdate, RecalculationPolicy, RuleHooks};
+use super::{ManifoldUpdate, PlanCause, RecalculationPolicy, RuleHooks, own_settings};
 use super::super::model::dynamic_body;
+use super::super::planner::decisions::Decisions;
 use super::super::planner::{self, ColliderPlan, Request};
 use super::super::world::{Settings, Written};
 
@@ -13,11 +14,18 @@ impl RuleHooks {
     /// Plans every reached collider again (every collider in a full pass)
     /// and gives each the flags, groups and types of its plan, touching only
     /// those that differ; colliders no longer reached get Rapier's defaults back.
-    pub(super) fn apply_plan(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+    pub(super) fn apply_plan(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+        graph: Option<&NarrowPhase>,
+        cause: PlanCause,
+    ) {
         let pinned = self.pinned();
         let ruled = self.decide.rules.ruled_nodes();
         let reached: Vec<ColliderHandle> = self.planned.roster.colliders().to_vec();
         let own = |h: ColliderHandle, c: &Collider| self.own_settings(h, c);
+        let pairs_of = pairs_in(graph);
         let request = Request {
             rules: &self.decide.rules,
             bodies,
@@ -27,6 +35,8 @@ impl RuleHooks {
             pinned: &pinned,
             all_hooked: self.full_pass(),
             own: &own,
+            pairs_of: &pairs_of,
+            decided: &self.planned.plan.decisions,
         };
         let plan = planner::plan(&request);
         // Never pairs: the hooked side also modifies the pair's contacts.
@@ -56,6 +66,7 @@ impl RuleHooks {
         let mut entries: Vec<_> = plan.colliders.iter().map(|(h, e)| (h, *e)).collect();
         entries.sort_unstable_by_key(|(h, _)| h.into_raw_parts());
         self.stats.planned_colliders = entries.len();
+        self.stats.full_plan = Some(cause);
         for &(handle, _) in &entries {
             self.planned.roster.watch_collider(bodies, colliders, handle);
         }
@@ -63,19 +74,28 @@ impl RuleHooks {
             self.configure(bodies, colliders, handle, entry);
         }
         self.planned.plan = plan;
-        self.queued.replan = false;
+        self.queued.replan = None;
         self.queued.candidates.clear();
         self.count_hooked();
     }
 
     /// Plans the candidate colliders alone when the rest of the plan stands
     /// (see `planner::replan_some`), else everything reached.
-    pub(super) fn apply_partial_plan(&mut self, bodies: &RigidBodySet, colliders: &mut ColliderSet) {
+    pub(super) fn apply_partial_plan(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+        graph: Option<&NarrowPhase>,
+    ) {
         let mut handles = std::mem::take(&mut self.queued.candidates);
         handles.sort_unstable_by_key(|h| h.into_raw_parts());
         handles.dedup();
         let pinned = self.pinned();
-        let own = |h: ColliderHandle, c: &Collider| self.own_settings(h, c);
+        let written = &self.planned.written;
+        let own = |h: ColliderHandle, c: &Collider| own_settings(written, h, c);
+        let pairs_of = pairs_in(graph);
+        let all_hooked = self.full_pass();
+        let decided = Decisions::default();
         let request = Request {
             rules: &self.decide.rules,
             bodies,
@@ -83,13 +103,18 @@ impl RuleHooks {
             reached: &handles,
             ruled: &[],
             pinned: &pinned,
-            all_hooked: self.full_pass(),
+            all_hooked,
             own: &own,
+            pairs_of: &pairs_of,
+            decided: &decided,
         };
-        let Some(planned) = planner::replan_some(&self.planned.plan, &request, &handles) else {
-            return self.apply_plan(bodies, colliders);
+        let Some(planned) = planner::replan_some(&mut self.planned.plan, &request, &handles) else {
+            return self.apply_plan(bodies, colliders, graph, PlanCause::NewClass);
         };
         self.stats.planned_colliders = planned.len();
+        for &(handle, _) in &planned {
+            self.planned.roster.watch_collider(bodies, colliders, handle);
+        }
         for (handle, entry) in planned {
             self.configure(bodies, colliders, handle, entry);
             self.planned.plan.colliders.insert(handle, entry);
@@ -165,4 +190,10 @@ impl RuleHooks {
         }
         target.write(collider);
     }
+}
+
+/// What hooking a collider costs, read in Rapier's graph where it is at
+/// hand: its pairs now (see `planner::carriers::side_cost`).
+fn pairs_in(graph: Option<&NarrowPhase>) -> impl Fn(ColliderHandle) -> Option<usize> + '_ {
+    move |c| graph.map(|g| g.contact_pairs_with(c).count())
 }

@@ -14,6 +14,9 @@ pub(crate) struct Changes {
     pub(crate) parents: bool,
     records: Vec<RecordId>,
     nodes: Vec<Node>,
+    /// Nodes an entry edit named as its subject: watched, but their own
+    /// colliders' plans do not change (the entry's owner is logged too).
+    subjects: Vec<Node>,
 }
 
 /// Past this many remembered edits, the log gives up and says "everything".
@@ -22,7 +25,22 @@ const CHANGE_LOG_LIMIT: usize = 4096;
 impl Changes {
     #[inline]
     pub(crate) fn is_empty(&self) -> bool {
-        !self.everything && self.records.is_empty() && self.nodes.is_empty()
+        !self.everything
+            && self.records.is_empty()
+            && self.nodes.is_empty()
+            && self.subjects.is_empty()
+    }
+
+    /// The subjects of entry edits (see the field).
+    pub(crate) fn subjects(&self) -> &[Node] {
+        &self.subjects
+    }
+
+    pub(super) fn subject(&mut self, node: Node) {
+        if !self.everything {
+            self.subjects.push(node);
+            self.cap();
+        }
     }
 
     pub(super) fn node(&mut self, node: Node) {
@@ -43,10 +61,11 @@ impl Changes {
         self.everything = true;
         self.records = Vec::new();
         self.nodes = Vec::new();
+        self.subjects = Vec::new();
     }
 
     fn cap(&mut self) {
-        if self.records.len() + self.nodes.len() > CHANGE_LOG_LIMIT {
+        if self.records.len() + self.nodes.len() + self.subjects.len() > CHANGE_LOG_LIMIT {
             self.everything();
         }
     }

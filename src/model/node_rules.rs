@@ -106,7 +106,7 @@ impl CollisionRuleSet {
                 *self.named.entry(other).or_default() += 1;
             }
             self.touch(node);
-            self.changes.node(other);
+            self.changes.subject(other);
         }
     }
 
@@ -127,7 +127,7 @@ impl CollisionRuleSet {
                 self.unname(other);
             }
             self.tidy(node);
-            self.changes.node(other);
+            self.changes.subject(other);
         }
     }
 
@@ -216,6 +216,16 @@ impl CollisionRuleSet {
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
     ) -> Vec<ColliderHandle> {
+        let in_world = |c: &&ColliderHandle| colliders.contains(**c);
+        if let Node::Body(root) = node {
+            // No body below it in the parent map (the common case): its
+            // own colliders, without a walk of the parent map.
+            if !self.hierarchy.is_parent(root) {
+                return bodies.get(root).map_or_else(Vec::new, |body| {
+                    body.colliders().iter().filter(in_world).copied().collect()
+                });
+            }
+        }
         let mut below: Vec<ColliderHandle> = self
             .descendants(node, bodies, colliders)
             .into_iter()

@@ -163,12 +163,12 @@ impl CollisionRuleSet {
 
     /// Lets one user of record `id` go; a freed record's entries no longer
     /// name anyone. The nodes its entries name lose their entries with that
-    /// user (their side of an entry may no longer be the one to hook): they
-    /// are logged as edited.
+    /// user: they are logged as subjects, watched (the plan forgets the
+    /// decisions of the entries that ended through their owners).
     fn release(&mut self, id: RecordId) {
         let subjects: Vec<Node> = self.records.get(id).specific.keys().copied().collect();
         for subject in subjects {
-            self.changes.node(subject);
+            self.changes.subject(subject);
         }
         if let Some(freed) = self.records.release(id) {
             for other in freed.specific.keys() {

@@ -1,73 +1,68 @@
-//! Carriers: which side of each specific entry and pinned pair is hooked,
+//! Carriers: which side of a specific entry or a pinned pair is hooked,
 //! chosen by cost (`docs/architecture.md`, "The planner").
 
 use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
 use super::plan::Request;
-use super::super::Node;
 use super::super::model::dynamic_body;
 
-/// Chooses, for every specific entry and every pinned pair, the side that
-/// carries the hook flag, adds its colliders to `hooked` and returns those
-/// it added. A specific entry `x -> y` reaches only pairs whose chains hold
-/// `x` on one side and `y` on the other, so hooking every collider under
-/// either node decides all of them; the cheaper side is taken (colliders
-/// already hooked cost nothing, dynamic ones little, a fixed or kinematic
-/// hub much), the entry's owner on a tie.
-pub(super) fn carriers(
+/// Hooks the cheaper side of every pinned pair (an override or a manifold
+/// setting keeps one side hooked), adds its colliders to `hooked` and
+/// returns those it added. The side is chosen by body type alone, which
+/// does not change with the pair's neighbours, so every plan of the same
+/// world chooses alike.
+pub(super) fn pinned_carriers(
     request: &Request<'_>,
     hooked: &mut HashSet<ColliderHandle>,
-    decided: &HashSet<(Node, Node)>,
 ) -> HashSet<ColliderHandle> {
-    let Request {
-        rules,
-        bodies,
-        colliders,
-        ..
-    } = *request;
-    let under = |node: Node| rules.colliders_under(node, bodies, colliders);
-    let mut sides: Vec<(Vec<ColliderHandle>, Vec<ColliderHandle>)> = Vec::new();
-    for &node in request.ruled {
-        let Some(record) = rules.record(node) else {
-            continue;
-        };
-        // Sorted, so that the choice is the same in every run.
-        let mut subjects: Vec<Node> = record.specific.keys().copied().collect();
-        subjects.sort_unstable();
-        for subject in subjects {
-            if !decided.contains(&(node, subject)) {
-                sides.push((under(node), under(subject)));
-            }
-        }
-    }
+    let mut added = HashSet::new();
     for key in request.pinned {
         let (a, b) = key.colliders();
-        sides.push((vec![a], vec![b]));
-    }
-
-    let mut added = HashSet::new();
-    for (owner, other) in sides {
-        let cost = |side: &[ColliderHandle], hooked: &HashSet<ColliderHandle>| -> u64 {
-            side.iter()
-                .filter(|c| !hooked.contains(*c))
-                .map(|&c| match colliders.get(c) {
-                    Some(collider) if dynamic_body(bodies, collider.parent()) => 1,
-                    Some(_) => 1_000,
-                    None => 0,
-                })
-                .sum()
-        };
-        let side = if cost(&other, hooked) < cost(&owner, hooked) {
-            other
+        let is_hooked = |c: ColliderHandle| hooked.contains(&c);
+        let by_type = |_| None;
+        let side = if side_cost(request, &[b], is_hooked, &by_type)
+            < side_cost(request, &[a], is_hooked, &by_type)
+        {
+            b
         } else {
-            owner
+            a
         };
-        for c in side {
-            if hooked.insert(c) {
-                added.insert(c);
-            }
+        if hooked.insert(side) {
+            added.insert(side);
         }
     }
     added
+}
+
+/// What hooking the colliders of `side` not yet `hooked` costs: each loses
+/// Rapier's contact recycling on every pair it has. Where Rapier's graph is
+/// at hand a collider costs one more than its pairs now, and a fixed or
+/// kinematic one one more again (a fixed pickup that touches nothing is
+/// cheap, a floor under a pile dear, and at equal pairs the dynamic side is
+/// hooked); without it (a bare `prepare`) a dynamic collider costs 1 and a
+/// fixed or kinematic one, which may be a hub, 1,000 (`docs/architecture.md`,
+/// "The planner").
+pub(super) fn side_cost(
+    request: &Request<'_>,
+    side: &[ColliderHandle],
+    hooked: impl Fn(ColliderHandle) -> bool,
+    pairs_of: &dyn Fn(ColliderHandle) -> Option<usize>,
+) -> u64 {
+    side.iter()
+        .filter(|&&c| !hooked(c))
+        .map(|&c| match request.colliders.get(c) {
+            None => 0,
+            Some(collider) => {
+                let dynamic = dynamic_body(request.bodies, collider.parent());
+                match pairs_of(c) {
+                    // A fixed or kinematic collider weighs one more: at equal
+                    // pairs (none yet, in a new world) the hub stays native.
+                    Some(pairs) => 1 + pairs as u64 + u64::from(!dynamic),
+                    None if dynamic => 1,
+                    None => 1_000,
+                }
+            }
+        })
+        .sum()
 }

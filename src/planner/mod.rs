@@ -22,7 +22,7 @@
 pub(crate) mod carriers;
 pub(crate) mod class;
 pub(crate) mod collider_plan;
-pub(crate) mod entry_bits;
+pub(crate) mod decisions;
 pub(crate) mod group_settings;
 pub(crate) mod personal;
 pub(crate) mod plan;
@@ -31,4 +31,4 @@ pub(crate) mod room;
 
 pub(crate) use collider_plan::ColliderPlan;
 pub(crate) use plan::{Plan, Request, plan};
-pub(crate) use replan::{replan_some, touches_entries};
+pub(crate) use replan::replan_some;

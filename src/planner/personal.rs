@@ -7,7 +7,6 @@ use super::super::rapier::prelude::*;
 
 use super::class::Class;
 use super::plan::Request;
-use super::replan::touches_entries;
 use super::super::{CollisionRule, CollisionRuleSet, Node};
 
 /// The first decided personal rule up the chain of `leaf`, and its depth
@@ -124,4 +123,20 @@ pub(super) fn personal_natives(
         natives.insert(handle, rule);
     }
     natives
+}
+
+/// Whether `start` or a node above it carries specific entries or is named
+/// by one.
+fn touches_entries(
+    rules: &CollisionRuleSet,
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    start: impl Into<Node>,
+) -> bool {
+    rules
+        .hierarchy
+        .chain(bodies, colliders, start.into())
+        .any(|node| {
+            rules.is_named(node) || rules.record(node).is_some_and(|r| !r.specific.is_empty())
+        })
 }

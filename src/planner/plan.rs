@@ -31,10 +31,10 @@
 use hashbrown::{HashMap, HashSet};
 use super::super::rapier::prelude::*;
 
-use super::carriers::carriers;
+use super::carriers::pinned_carriers;
 use super::class::{Class, native_class};
 use super::collider_plan::ColliderPlan;
-use super::entry_bits::EntryBits;
+use super::decisions::{Base, Decisions, Facts};
 use super::group_settings::{GroupSettings, default_refuses};
 use super::personal::personal_natives;
 use super::room::Room;
@@ -64,6 +64,13 @@ pub(crate) struct Plan {
     /// which a personal rule elsewhere can make inexact: a collider whose
     /// chain has a personal rule is then planned with everything.
     pub(super) personal_restricts: bool,
+    /// Each planned collider's plan before the entries (see [`Base`]).
+    pub(super) base: HashMap<ColliderHandle, Base>,
+    /// How each specific entry is decided, kept from plan to plan.
+    pub(crate) decisions: Decisions,
+    /// The bits the groups took (raw): entries take theirs from the rest of
+    /// the room.
+    pub(super) group_bits: u32,
 }
 
 impl Plan {
@@ -92,6 +99,11 @@ pub(crate) struct Request<'a> {
     pub(crate) all_hooked: Option<FullPass>,
     /// The project's own settings of a collider.
     pub(crate) own: &'a dyn Fn(ColliderHandle, &Collider) -> Settings,
+    /// How many pairs a collider has in Rapier's graph now, where the graph
+    /// is at hand: what hooking it costs (see [`carriers`]).
+    pub(crate) pairs_of: &'a dyn Fn(ColliderHandle) -> Option<usize>,
+    /// The decisions of the plan before, kept (see [`Decisions`]).
+    pub(crate) decided: &'a Decisions,
 }
 
 impl Request<'_> {
@@ -171,16 +183,10 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
         })
         .map(|&(h, _, _)| h)
         .collect();
-    // Specific entries Rapier's groups can decide take bits of their own;
-    // the others are carried by a hooked side.
-    let looked_up = plan.room.map(|(room, _)| room);
-    let entry_bits = EntryBits::plan(request, &classes, &settings, &personal, &hooked, looked_up);
-    if plan.room.is_none() {
-        plan.room = entry_bits.room.map(|room| (room, colliders.len()));
-    }
-    plan.carriers = carriers(request, &mut hooked, &entry_bits.decided);
-    // A carrier the rules did not otherwise reach (a named node's collider,
-    // one side of a pinned pair) is planned too.
+    // A pinned pair hooks its cheaper side.
+    plan.carriers = pinned_carriers(request, &mut hooked);
+    // A carrier the rules did not otherwise reach (one side of a pinned
+    // pair) is planned too.
     let known: HashSet<ColliderHandle> = classes.iter().map(|c| c.0).collect();
     let mut extra: Vec<ColliderHandle> = plan
         .carriers
@@ -191,7 +197,8 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
     extra.sort_unstable_by_key(|c| c.into_raw_parts());
     classes.extend(extra.into_iter().filter_map(class_of));
 
-    for (handle, class, dynamic) in classes {
+    // Each collider's plan before the entries.
+    for &(handle, class, dynamic) in &classes {
         let entry = match class.filter(|_| !hooked.contains(&handle)) {
             None if !hooked.contains(&handle) => personal
                 .get(&handle)
@@ -207,10 +214,72 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
                 None => ColliderPlan::hooked_plan(dynamic),
             },
         };
+        let personal = personal.contains_key(&handle) && !entry.hooked();
+        let body = colliders.get(handle).and_then(|c| c.parent());
+        plan.base.insert(
+            handle,
+            Base {
+                plan: entry,
+                personal,
+                dynamic,
+                body,
+            },
+        );
+    }
+
+    // Specific entries: Rapier's groups with bits of their own where that
+    // is exact, else a hooked side; decisions already made are kept.
+    plan.group_bits = settings.bits.values().fold(0, |g, &bit| g | 1 << bit);
+    let entries = ruled_entries(request);
+    let mut decisions = request.decided.clone();
+    decisions.keep_only(&entries);
+    let mut looked_up = plan.room.map(|(room, _)| room);
+    {
+        let group_bits = plan.group_bits;
+        let mut free = || {
+            let room = *looked_up.get_or_insert_with(|| Room::of_world(colliders, request.own));
+            room.bits() - Group::from_bits_retain(group_bits)
+        };
+        let base = |c: ColliderHandle| plan.base.get(&c).copied();
+        let pinned = request.pinned_colliders();
+        let is_pinned = |c: ColliderHandle| pinned.contains(&c);
+        let mut facts = Facts {
+            base: &base,
+            pinned: &is_pinned,
+            free: &mut free,
+        };
+        decisions.decide(request, &mut facts, &entries);
+    }
+    if plan.room.is_none() {
+        plan.room = looked_up.map(|room| (room, colliders.len()));
+    }
+
+    for (handle, _, dynamic) in classes {
+        let base = plan.base[&handle];
+        let entry = decisions.apply(request, handle, base);
         let own = colliders.get(handle).map(|c| (request.own)(handle, c));
-        let entry = entry_bits.apply(handle, entry);
         let entry = own.map_or(entry, |own| entry.fitted(own, dynamic, rules));
         plan.colliders.insert(handle, entry);
     }
+    plan.decisions = decisions;
     plan
+}
+
+/// A specific entry between `a` and `b`, its nodes in the node order.
+pub(super) fn ordered(a: Node, b: Node) -> (Node, Node) {
+    if a <= b { (a, b) } else { (b, a) }
+}
+
+/// Every specific entry of the ruled nodes, each once, in the node order.
+pub(super) fn ruled_entries(request: &Request<'_>) -> Vec<(Node, Node)> {
+    let rules = request.rules;
+    let mut entries: Vec<(Node, Node)> = request
+        .ruled
+        .iter()
+        .filter_map(|&node| rules.record(node).map(|r| (node, r)))
+        .flat_map(|(node, record)| record.specific.keys().map(move |&o| ordered(node, o)))
+        .collect();
+    entries.sort_unstable();
+    entries.dedup();
+    entries
 }

@@ -1,21 +1,32 @@
 //! Planning a few colliders against the rest of the plan, and when that
 //! is not enough.
 
+use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
 use super::class::{Class, native_class};
 use super::collider_plan::ColliderPlan;
+use super::decisions::{Base, Facts};
 use super::personal::{first_personal, personal_rule};
-use super::plan::{Plan, Request};
+use super::plan::{Plan, Request, ordered};
+use super::room::Room;
 use super::super::model::dynamic_body;
-use super::super::{CollisionRule, CollisionRuleSet, Node};
+use super::super::{CollisionRule, Node};
 
-/// Plans `handles` alone, against the rest of `plan`: possible when each of
-/// them ends up hooked by its own chain, or in a class the plan already has,
-/// and no specific entry or pinned pair could make it a carrier (the bits
-/// and filters of every group then stay as they are). `None`: plan again.
+/// Plans `handles` alone, against the rest of `plan`, at the cost of their
+/// own colliders, the specific entries that reach them and, where an
+/// entry's decision changes, the colliders under its two nodes
+/// (`docs/architecture.md`, "Cost per step"). Each collider's plan before
+/// the entries is its class's (a class the plan already has), a personal
+/// `Normal`, or hooked by its own chain; the entries that reach it are
+/// decided as a whole plan decides them (see [`Decisions`]), and their
+/// decisions applied. Updates the plan's decisions and bases, and returns
+/// the colliders' plans to write. `None` (plan everything again) when a
+/// collider needs what only a whole plan gives: a class no native collider
+/// has, a personal rule other than the plan's kind, settings outside the
+/// room the plan took, or a pinned pair.
 pub(crate) fn replan_some(
-    plan: &Plan,
+    plan: &mut Plan,
     request: &Request<'_>,
     handles: &[ColliderHandle],
 ) -> Option<Vec<(ColliderHandle, ColliderPlan)>> {
@@ -29,63 +40,147 @@ pub(crate) fn replan_some(
         return None;
     }
     let pinned = request.pinned_colliders();
-    let mut planned = Vec::with_capacity(handles.len());
+    let mut asked: Vec<ColliderHandle> = Vec::with_capacity(handles.len());
+    let mut seen: HashSet<ColliderHandle> = HashSet::new();
+    // Asked colliders new to the plan, or whose plan before the entries or
+    // body changed.
+    let mut moved: HashSet<ColliderHandle> = HashSet::new();
     for &handle in handles {
-        let Some(collider) = colliders.get(handle) else {
-            continue;
-        };
-        if pinned.contains(&handle) || touches_entries(rules, bodies, colliders, handle) {
+        if pinned.contains(&handle) {
             return None;
         }
-        // A personal rule: native by `Normal` as the plan has it; any other
-        // native personal rule depends on every collider's personal rules.
-        let personal = first_personal(rules, bodies, colliders, handle)
-            .map(|_| personal_rule(rules, bodies, colliders, handle).map(|(rule, _)| rule));
-        let restricts = personal
-            .flatten()
-            .is_some_and(|r| r != CollisionRule::Normal);
-        if personal.is_some() && (plan.personal_restricts || restricts) {
-            return None;
-        }
-        let own = (request.own)(handle, collider);
-        if plan.room.is_some_and(|(room, _)| !room.holds(own)) {
-            // Its settings take bits or types the plan gave away: look again.
-            return None;
-        }
-        let dynamic = dynamic_body(bodies, collider.parent());
-        let entry = match native_class(rules, bodies, colliders, handle, dynamic) {
-            None if dynamic && personal.flatten() == Some(CollisionRule::Normal) => {
-                ColliderPlan::personal(CollisionRule::Normal)
+        if let Some(base) = base_of(plan, request, handle)? {
+            if plan.base.insert(handle, base) != Some(base) {
+                moved.insert(handle);
             }
-            None => ColliderPlan::hooked_plan(dynamic),
-            Some(class) if class == Class::unreached(dynamic) => {
-                match plan.classes.get(&class) {
-                    Some(entry) => *entry,
-                    // Checked when the plan was made: a default class is planned
-                    // as Rapier's defaults unless the plan is a full pass.
-                    None => ColliderPlan::unreached(dynamic),
-                }
+            if seen.insert(handle) {
+                asked.push(handle);
             }
-            Some(class) => *plan.classes.get(&class)?,
-        };
-        planned.push((handle, entry.fitted(own, dynamic, rules)));
+        }
     }
+
+    // The entries that reach an asked collider: those of the nodes of its
+    // chain (an edit of a node may have changed them), and, for a collider
+    // that moved, those the decisions list under them (where it is the
+    // subject of an entry). The entries listed under a collider that did
+    // not move are as exact as they were: a hub named by many entries costs
+    // nothing when an edit or a removal touches it.
+    let mut entries: Vec<(Node, Node)> = Vec::new();
+    for &handle in &asked {
+        let moved = moved.contains(&handle);
+        for node in rules.hierarchy.chain(bodies, colliders, Node::Collider(handle)) {
+            if let Some(record) = rules.record(node) {
+                entries.extend(record.specific.keys().map(|&other| ordered(node, other)));
+            }
+            if moved {
+                entries.extend(plan.decisions.listed(node).iter().copied());
+            }
+        }
+    }
+    entries.sort_unstable();
+    entries.dedup();
+    let changed = {
+        let Plan {
+            base,
+            decisions,
+            room,
+            group_bits,
+            ..
+        } = plan;
+        let group_bits = *group_bits;
+        let mut free = || {
+            let (found, _) = *room.get_or_insert_with(|| {
+                (Room::of_world(colliders, request.own), colliders.len())
+            });
+            found.bits() - Group::from_bits_retain(group_bits)
+        };
+        let known = |c: ColliderHandle| base.get(&c).copied();
+        let is_pinned = |c: ColliderHandle| pinned.contains(&c);
+        let mut facts = Facts {
+            base: &known,
+            pinned: &is_pinned,
+            free: &mut free,
+        };
+        decisions.decide(request, &mut facts, &entries)
+    };
+    // An entry decided anew changes the colliders under both its nodes.
+    for (x, y) in changed {
+        for c in rules
+            .colliders_under(x, bodies, colliders)
+            .into_iter()
+            .chain(rules.colliders_under(y, bodies, colliders))
+        {
+            if seen.insert(c) {
+                if plan.base.get(&c).is_none() {
+                    let base = base_of(plan, request, c)??;
+                    plan.base.insert(c, base);
+                }
+                asked.push(c);
+            }
+        }
+    }
+    let planned = asked
+        .into_iter()
+        .filter_map(|handle| {
+            let base = plan.base[&handle];
+            let own = (request.own)(handle, colliders.get(handle)?);
+            let entry = plan.decisions.apply(request, handle, base);
+            Some((handle, entry.fitted(own, base.dynamic, rules)))
+        })
+        .collect();
     Some(planned)
 }
 
-/// Whether `start` or a node above it carries specific entries or is named
-/// by one: the side that carries them is chosen by a whole plan, from the
-/// colliders under each side and their bodies' types.
-pub(crate) fn touches_entries(
-    rules: &CollisionRuleSet,
-    bodies: &RigidBodySet,
-    colliders: &ColliderSet,
-    start: impl Into<Node>,
-) -> bool {
-    rules
-        .hierarchy
-        .chain(bodies, colliders, start.into())
-        .any(|node| {
-            rules.is_named(node) || rules.record(node).is_some_and(|r| !r.specific.is_empty())
-        })
+/// The plan of `handle` before the entries, against the rest of `plan`:
+/// `Some(None)` for a collider no longer in the world, `None` where only a
+/// whole plan can say (see [`replan_some`]).
+fn base_of(plan: &Plan, request: &Request<'_>, handle: ColliderHandle) -> Option<Option<Base>> {
+    let Request {
+        rules,
+        bodies,
+        colliders,
+        ..
+    } = *request;
+    let Some(collider) = colliders.get(handle) else {
+        return Some(None);
+    };
+    // A personal rule: native by `Normal` as the plan has it; any other
+    // native personal rule depends on every collider's personal rules.
+    let personal = first_personal(rules, bodies, colliders, handle)
+        .map(|_| personal_rule(rules, bodies, colliders, handle).map(|(rule, _)| rule));
+    let restricts = personal
+        .flatten()
+        .is_some_and(|r| r != CollisionRule::Normal);
+    if personal.is_some() && (plan.personal_restricts || restricts) {
+        return None;
+    }
+    let own = (request.own)(handle, collider);
+    if plan.room.is_some_and(|(room, _)| !room.holds(own)) {
+        // Its settings take bits or types the plan gave away: look again.
+        return None;
+    }
+    let dynamic = dynamic_body(bodies, collider.parent());
+    let mut personal_native = false;
+    let entry = match native_class(rules, bodies, colliders, handle, dynamic) {
+        None if dynamic && personal.flatten() == Some(CollisionRule::Normal) => {
+            personal_native = true;
+            ColliderPlan::personal(CollisionRule::Normal)
+        }
+        None => ColliderPlan::hooked_plan(dynamic),
+        Some(class) if class == Class::unreached(dynamic) => {
+            match plan.classes.get(&class) {
+                Some(entry) => *entry,
+                // Checked when the plan was made: a default class is planned
+                // as Rapier's defaults unless the plan is a full pass.
+                None => ColliderPlan::unreached(dynamic),
+            }
+        }
+        Some(class) => *plan.classes.get(&class)?,
+    };
+    Some(Some(Base {
+        plan: entry,
+        personal: personal_native,
+        dynamic,
+        body: collider.parent(),
+    }))
 }

@@ -6,6 +6,7 @@ use super::rapier::prelude::*;
 use super::rules::{CollisionGroup, CollisionRule, FullPass, RuleHooks};
 
 use super::scenes::Scene;
+use super::{at, cuboid};
 use CollisionRule::*;
 
 fn hooked(scene: &Scene, collider: ColliderHandle) -> bool {
@@ -83,10 +84,10 @@ fn a_specific_rule_is_rapier_groups_or_hooks_the_ghost_not_the_floor_it_names() 
 }
 
 #[test]
-fn past_the_free_bits_the_ghosts_are_hooked_and_every_one_passes() {
-    // 40 ghosts, each with its own NoResponse entry about the floor: each
-    // carries a bit of its own while they last (32 with no other bits in
-    // use), the rest are hooked.
+fn entries_about_one_floor_share_one_bit_and_every_ghost_passes() {
+    // 40 ghosts, each with its own NoResponse entry about the floor: the
+    // entries about the floor share one bit, which every ghost carries and
+    // the floor leaves out; nothing is hooked.
     let mut scene = Scene::new();
     let ghosts: Vec<_> = (0..40)
         .map(|i| scene.cube((i % 8) as f32 * 1.5 - 6.0, 2.0 + (i / 8) as f32 * 1.5))
@@ -101,12 +102,54 @@ fn past_the_free_bits_the_ghosts_are_hooked_and_every_one_passes() {
         hooks.step(&mut scene.world);
     }
     let by_bits = ghosts.iter().filter(|&&(_, g)| !hooked(&scene, g)).count();
-    assert_eq!(by_bits, 32, "ghosts with a bit of their own");
-    assert!(!hooked(&scene, scene.floor), "the floor is not hooked");
+    assert_eq!(by_bits, 40, "ghosts decided by Rapier's groups");
+    let floor = scene.world.colliders[scene.floor].solver_groups();
+    assert_eq!(
+        (Group::ALL - floor.filter).bits().count_ones(),
+        1,
+        "the floor leaves out one bit: {floor:?}"
+    );
     for &(ghost, g) in &ghosts {
         assert!(
             scene.y(ghost) < -1.0,
             "ghost {g:?} (hooked {}) passed the floor: y = {}",
+            hooked(&scene, g),
+            scene.y(ghost)
+        );
+    }
+}
+
+#[test]
+fn past_the_free_bits_the_ghosts_are_hooked_and_every_one_passes() {
+    // 40 ghosts side by side, each with a NoResponse entry about a pad of
+    // its own above the floor: each pad's entries take a bit while they last
+    // (32 with no other bits in use), the rest of the ghosts are hooked.
+    // Every ghost falls through its pad onto the floor.
+    let mut scene = Scene::new();
+    let mut ghosts = Vec::new();
+    let mut hooks = RuleHooks::default();
+    for i in 0..40 {
+        let x = i as f32 * 1.01 - 19.7;
+        let (ghost, g) = scene.cube(x, 3.0);
+        let pad = scene
+            .world
+            .insert_body(RigidBodyBuilder::fixed().translation(at(x, 1.5)));
+        scene
+            .world
+            .insert_collider(cuboid(0.45, 0.05, 0.45), Some(pad));
+        hooks.rules_mut().set_specific(ghost, pad, NoResponse);
+        ghosts.push((ghost, g));
+    }
+    for _ in 0..90 {
+        hooks.step(&mut scene.world);
+    }
+    let by_bits = ghosts.iter().filter(|&&(_, g)| !hooked(&scene, g)).count();
+    assert_eq!(by_bits, 32, "ghosts whose pad's entry has a bit");
+    assert!(!hooked(&scene, scene.floor), "the floor is not hooked");
+    for &(ghost, g) in &ghosts {
+        assert!(
+            scene.y(ghost) < 1.0,
+            "ghost {g:?} (hooked {}) did not pass its pad: y = {}",
             hooked(&scene, g),
             scene.y(ghost)
         );

@@ -27,7 +27,7 @@ pub(crate) fn prepare_contexts(
         let bodies = &mut bodies.bypass_change_detection().bodies;
         rules.colliders_at = std::ptr::from_ref(colliders) as usize;
         let hooks = rules.hooks_mut();
-        hooks.prepare(bodies, colliders);
+        hooks.prepare_with_graph(bodies, colliders, &simulation.narrow_phase);
         hooks.freeze_manifolds(&simulation.narrow_phase);
         hooks.wake_edited(&mut simulation.islands, bodies);
     }

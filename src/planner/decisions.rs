@@ -1,0 +1,475 @@
+//! How each specific entry is decided, kept with the entry: Rapier's groups
+//! with a bit of its own ([`Decision::Bits`]), or one side hooked
+//! ([`Decision::Hooked`]) (`docs/architecture.md`, "The planner").
+//!
+//! A decision is made the first time a plan meets its entry with colliders
+//! on both sides, and kept for the entry's life: a whole plan and a plan of
+//! a few colliders read and make decisions the same way (in the node order
+//! of the entries), so a world's plan is the same however many whole plans
+//! it had, and a plan of a few colliders never has to look at the rest of
+//! the world. A `Bits` decision is checked again whenever a plan meets its
+//! entry (a collider under a side changed, or a new entry links the sides)
+//! and gives way to a hooked side where it is no longer exact; a hooked side
+//! is always exact.
+
+use hashbrown::HashMap;
+use super::super::rapier::prelude::*;
+
+use super::carriers::side_cost;
+use super::collider_plan::ColliderPlan;
+use super::plan::{Request, ordered};
+use super::super::{CollisionRule, Node};
+
+/// How one specific entry is decided.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Decision {
+    /// Rapier's groups decide it: the colliders under `carrying`, all on
+    /// dynamic bodies, take `bit` as their membership of `kind` (0:
+    /// collision groups, for `NoPair`; 1: solver groups, for `NoResponse`),
+    /// and the colliders under `other` leave it out of their filter. Every
+    /// entry about `other` of one kind shares one bit.
+    Bits {
+        carrying: Node,
+        other: Node,
+        kind: usize,
+        bit: u32,
+    },
+    /// The colliders under `side` are hooked.
+    Hooked { side: Node },
+}
+
+/// A collider's plan before the entries: its class's, a personal one, or
+/// hooked by its own chain.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Base {
+    pub(crate) plan: ColliderPlan,
+    /// Native by a personal rule (never carries a bit).
+    pub(crate) personal: bool,
+    pub(crate) dynamic: bool,
+    /// Its body: with the parent map (whose edits plan everything), what
+    /// its chain is.
+    pub(crate) body: Option<RigidBodyHandle>,
+}
+
+/// The decisions of every entry a plan met, each entry (its nodes in the
+/// node order) listed under both of its nodes, and what they say of each
+/// node, so that a collider's plan reads its chain, not the entries.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Decisions {
+    made: HashMap<(Node, Node), Decision>,
+    listed: HashMap<Node, Vec<(Node, Node)>>,
+    /// How many decisions hook the colliders under each node.
+    hooked_sides: HashMap<Node, usize>,
+    /// The bit each `(carrying node, kind)` carries, and for how many entries.
+    carrying: HashMap<(Node, usize), (u32, usize)>,
+    /// The bit of each `(other node, kind)`, which its colliders leave out,
+    /// and how many entries share it.
+    shared: HashMap<(Node, usize), (u32, usize)>,
+}
+
+/// What deciding reads besides the rules and the world.
+pub(super) struct Facts<'a> {
+    /// The base of a collider the rules reach (`None`: not planned).
+    pub(super) base: &'a dyn Fn(ColliderHandle) -> Option<Base>,
+    /// Colliders in pinned pairs (never carry a bit).
+    pub(super) pinned: &'a dyn Fn(ColliderHandle) -> bool,
+    /// The bits free for entries: the room the project's settings leave,
+    /// less the groups' bits. Looked up only when an entry asks for a bit
+    /// (the room is then read over the whole world, once).
+    pub(super) free: &'a mut dyn FnMut() -> Group,
+}
+
+/// One more user of `key`'s bit.
+fn count_in<K: std::hash::Hash + Eq>(map: &mut HashMap<K, (u32, usize)>, key: K, bit: u32) {
+    map.entry(key).or_insert((bit, 0)).1 += 1;
+}
+
+/// One user less of `key`'s bit.
+fn count_out<K: std::hash::Hash + Eq>(map: &mut HashMap<K, (u32, usize)>, key: K) {
+    if let Some(users) = map.get_mut(&key) {
+        users.1 -= 1;
+        if users.1 == 0 {
+            map.remove(&key);
+        }
+    }
+}
+
+impl Decisions {
+    /// The entries listed under `node`.
+    pub(super) fn listed(&self, node: Node) -> &[(Node, Node)] {
+        self.listed.get(&node).map_or(&[], Vec::as_slice)
+    }
+
+    /// Forgets every entry not in `keep` (sorted): a whole plan's entries.
+    pub(super) fn keep_only(&mut self, keep: &[(Node, Node)]) {
+        let mut gone: Vec<(Node, Node)> = self
+            .made
+            .keys()
+            .chain(self.listed.values().flatten())
+            .filter(|e| keep.binary_search(e).is_err())
+            .copied()
+            .collect();
+        gone.sort_unstable();
+        gone.dedup();
+        for entry in gone {
+            self.forget(entry);
+        }
+    }
+
+    /// Forgets the entries listed under `node` that `ended` says have ended
+    /// (a removed object's, or one an edit removed), and returns the nodes
+    /// of those that had a decision: the colliders under them are planned
+    /// again, for what the decision said of them ended too.
+    pub(crate) fn forget_ended(
+        &mut self,
+        node: Node,
+        ended: impl Fn((Node, Node)) -> bool,
+    ) -> Vec<Node> {
+        let gone: Vec<(Node, Node)> = self
+            .listed(node)
+            .iter()
+            .copied()
+            .filter(|&e| ended(e))
+            .collect();
+        let mut nodes = Vec::new();
+        for entry in gone {
+            if self.forget(entry).is_some() {
+                nodes.extend([entry.0, entry.1]);
+            }
+        }
+        nodes
+    }
+
+    fn list(&mut self, entry: (Node, Node)) {
+        for node in [entry.0, entry.1] {
+            let listed = self.listed.entry(node).or_default();
+            if !listed.contains(&entry) {
+                listed.push(entry);
+            }
+        }
+    }
+
+    fn forget(&mut self, entry: (Node, Node)) -> Option<Decision> {
+        let decision = self.unmake(entry);
+        for node in [entry.0, entry.1] {
+            if let Some(listed) = self.listed.get_mut(&node) {
+                listed.retain(|&e| e != entry);
+                if listed.is_empty() {
+                    self.listed.remove(&node);
+                }
+            }
+        }
+        decision
+    }
+
+    fn make(&mut self, entry: (Node, Node), decision: Decision) {
+        self.unmake(entry);
+        match decision {
+            Decision::Bits {
+                carrying,
+                other,
+                kind,
+                bit,
+            } => {
+                count_in(&mut self.carrying, (carrying, kind), bit);
+                count_in(&mut self.shared, (other, kind), bit);
+            }
+            Decision::Hooked { side } => *self.hooked_sides.entry(side).or_default() += 1,
+        }
+        self.made.insert(entry, decision);
+    }
+
+    fn unmake(&mut self, entry: (Node, Node)) -> Option<Decision> {
+        let decision = self.made.remove(&entry)?;
+        match decision {
+            Decision::Bits {
+                carrying,
+                other,
+                kind,
+                ..
+            } => {
+                count_out(&mut self.carrying, (carrying, kind));
+                count_out(&mut self.shared, (other, kind));
+            }
+            Decision::Hooked { side } => {
+                if let Some(count) = self.hooked_sides.get_mut(&side) {
+                    *count -= 1;
+                    if *count == 0 {
+                        self.hooked_sides.remove(&side);
+                    }
+                }
+            }
+        }
+        Some(decision)
+    }
+
+    /// Every bit an entry uses.
+    fn used(&self) -> Group {
+        self.shared
+            .values()
+            .fold(Group::empty(), |g, &(bit, _)| g | Group::from_bits_retain(1 << bit))
+    }
+
+    /// Decides `entries` (sorted, each once) that have no decision or whose
+    /// `Bits` decision is no longer exact, and forgets those that ended.
+    /// Returns the entries whose decision changed: the colliders under
+    /// their nodes are planned again.
+    pub(super) fn decide(
+        &mut self,
+        request: &Request<'_>,
+        facts: &mut Facts<'_>,
+        entries: &[(Node, Node)],
+    ) -> Vec<(Node, Node)> {
+        let Request {
+            rules,
+            bodies,
+            colliders,
+            ..
+        } = *request;
+        let mut changed = Vec::new();
+        for &(x, y) in entries {
+            let (xy, yx) = (rules.specific(x, y), rules.specific(y, x));
+            if xy == CollisionRule::Defer && yx == CollisionRule::Defer {
+                if self.made.contains_key(&(x, y)) {
+                    changed.push((x, y));
+                }
+                self.forget((x, y));
+                continue;
+            }
+            self.list((x, y));
+            let kind = match xy.most_restrictive(yx) {
+                CollisionRule::NoPair => Some(0),
+                CollisionRule::NoResponse => Some(1),
+                _ => None,
+            };
+            // A hooked side is exact whatever comes under it: kept without
+            // looking at the sides.
+            let made = self.made.get(&(x, y)).copied();
+            if matches!(made, Some(Decision::Hooked { .. })) {
+                continue;
+            }
+            let under = |node: Node| rules.colliders_under(node, bodies, colliders);
+            let (cx, cy) = (under(x), under(y));
+            let kept = match made {
+                Some(Decision::Hooked { .. }) => true,
+                // The entry's rule changed: its bit says another rule.
+                Some(Decision::Bits { kind: k, .. }) if Some(k) != kind => false,
+                Some(Decision::Bits {
+                    carrying,
+                    kind,
+                    bit,
+                    ..
+                }) => {
+                    let (carried, other) = if carrying == x { (&cx, &cy) } else { (&cy, &cx) };
+                    let fits = (facts.free)().contains(Group::from_bits_retain(1 << bit));
+                    fits && self.bits_exact(request, facts, (x, y), carried, other, kind, bit)
+                }
+                // No pair to decide yet: decided when colliders come.
+                None => cx.is_empty() || cy.is_empty(),
+            };
+            if kept {
+                continue;
+            }
+            self.unmake((x, y));
+            let bits = kind.and_then(|kind| self.bits_for(request, facts, (x, y), &cx, &cy, kind));
+            let decision = bits.unwrap_or_else(|| {
+                // The owner's side on a tie.
+                let (owner, owner_side, other, other_side) = if xy != CollisionRule::Defer {
+                    (x, &cx, y, &cy)
+                } else {
+                    (y, &cy, x, &cx)
+                };
+                let hooked = |c: ColliderHandle| self.hooks(request, facts, c);
+                let pairs = request.pairs_of;
+                let side = if side_cost(request, other_side, hooked, pairs) < side_cost(request, owner_side, hooked, pairs) {
+                    other
+                } else {
+                    owner
+                };
+                Decision::Hooked { side }
+            });
+            self.make((x, y), decision);
+            changed.push((x, y));
+        }
+        changed
+    }
+
+    /// A `Bits` decision for entry `e`, where it is exact and a bit is
+    /// free: every collider under both sides is native with Rapier's default
+    /// groups (in its class's plan and its project's settings), in no
+    /// pinned pair and not native by a personal rule; the carrying side is
+    /// all dynamic (the smaller where both are, the first node on a tie)
+    /// and its colliders carry no other bit of the kind; the sides share no
+    /// collider, and no other entry links a node of one side's chains to a
+    /// node of the other's (so the specific stage finds this entry for each
+    /// of their pairs).
+    fn bits_for(
+        &self,
+        request: &Request<'_>,
+        facts: &mut Facts<'_>,
+        e: (Node, Node),
+        cx: &[ColliderHandle],
+        cy: &[ColliderHandle],
+        kind: usize,
+    ) -> Option<Decision> {
+        let side_dynamic = |side: &[ColliderHandle]| -> Option<bool> {
+            side.iter()
+                .map(|&c| eligible(request, facts, c))
+                .try_fold(true, |all, d| d.map(|d| all && d))
+        };
+        let (x_dynamic, y_dynamic) = (side_dynamic(cx)?, side_dynamic(cy)?);
+        let (carrying, carried, other, others) = match (x_dynamic, y_dynamic) {
+            (true, true) if cy.len() < cx.len() => (e.1, cy, e.0, cx),
+            (true, _) => (e.0, cx, e.1, cy),
+            (false, true) => (e.1, cy, e.0, cx),
+            (false, false) => return None,
+        };
+        let bit = match self.shared.get(&(other, kind)) {
+            Some(&(bit, _)) => bit,
+            None => {
+                let free = (facts.free)() - self.used();
+                (0..32u32).find(|&b| free.contains(Group::from_bits_retain(1 << b)))?
+            }
+        };
+        self.bits_exact(request, facts, e, carried, others, kind, bit)
+            .then_some(Decision::Bits {
+                carrying,
+                other,
+                kind,
+                bit,
+            })
+    }
+
+    /// Whether bit `bit` of `kind`, carried by `carried` and left out by
+    /// `others`, decides entry `e` exactly (see [`bits_for`](Self::bits_for)).
+    #[allow(clippy::too_many_arguments)]
+    fn bits_exact(
+        &self,
+        request: &Request<'_>,
+        facts: &mut Facts<'_>,
+        e: (Node, Node),
+        carried: &[ColliderHandle],
+        others: &[ColliderHandle],
+        kind: usize,
+        bit: u32,
+    ) -> bool {
+        let Request {
+            rules,
+            bodies,
+            colliders,
+            ..
+        } = *request;
+        let all_eligible = |side: &[ColliderHandle], dynamic: bool| {
+            side.iter().all(|&c| {
+                eligible(request, facts, c).is_some_and(|d| d || !dynamic)
+            })
+        };
+        if !all_eligible(carried, true) || !all_eligible(others, false) {
+            return false;
+        }
+        if carried.iter().any(|c| others.contains(c)) {
+            return false;
+        }
+        let chains = |side: &[ColliderHandle]| -> Vec<Node> {
+            let mut nodes: Vec<Node> = side
+                .iter()
+                .flat_map(|&c| rules.hierarchy.chain(bodies, colliders, Node::Collider(c)))
+                .collect();
+            nodes.sort_unstable();
+            nodes.dedup();
+            nodes
+        };
+        let (from, to) = (chains(carried), chains(others));
+        // Another entry from a node of `a` to a node of `b` than `e`.
+        let other_entry = |a: &[Node], b: &[Node]| {
+            a.iter().any(|&n| {
+                rules.record(n).is_some_and(|r| {
+                    r.specific
+                        .keys()
+                        .any(|&m| b.binary_search(&m).is_ok() && ordered(n, m) != e)
+                })
+            })
+        };
+        if other_entry(&from, &to) || other_entry(&to, &from) {
+            return false;
+        }
+        // Each carrying collider holds one membership bit of a kind.
+        !carried.iter().any(|&c| {
+            rules
+                .hierarchy
+                .chain(bodies, colliders, Node::Collider(c))
+                .any(|node| {
+                    self.carrying
+                        .get(&(node, kind))
+                        .is_some_and(|&(b, _)| b != bit)
+                })
+        })
+    }
+
+    /// Whether `c` ends up hooked: by its own chain, or under the hooked
+    /// side of a decided entry.
+    fn hooks(&self, request: &Request<'_>, facts: &Facts<'_>, c: ColliderHandle) -> bool {
+        match (facts.base)(c) {
+            Some(base) if base.plan.hooked() => true,
+            None => false,
+            Some(_) => request
+                .rules
+                .hierarchy
+                .chain(request.bodies, request.colliders, Node::Collider(c))
+                .any(|node| self.hooked_sides.contains_key(&node)),
+        }
+    }
+
+    /// `base`, the plan of collider `c` before the entries, with what the
+    /// decided entries reaching it say: hooked under a hooked side, a
+    /// membership bit under a carrying side, bits left out under the other.
+    pub(super) fn apply(&self, request: &Request<'_>, c: ColliderHandle, base: Base) -> ColliderPlan {
+        let mut plan = base.plan;
+        if plan.hooked() {
+            return plan;
+        }
+        let mut membership: [Option<u32>; 2] = [None; 2];
+        let mut excluded = [Group::empty(); 2];
+        let chain = request
+            .rules
+            .hierarchy
+            .chain(request.bodies, request.colliders, Node::Collider(c));
+        for node in chain {
+            if self.hooked_sides.contains_key(&node) {
+                return ColliderPlan::hooked_plan(base.dynamic);
+            }
+            for kind in 0..2 {
+                if let Some(&(bit, _)) = self.carrying.get(&(node, kind)) {
+                    membership[kind] = Some(bit);
+                }
+                if let Some(&(bit, _)) = self.shared.get(&(node, kind)) {
+                    excluded[kind] |= Group::from_bits_retain(1 << bit);
+                }
+            }
+        }
+        let narrow = |groups: InteractionGroups, bit: Option<u32>, excluded: Group| {
+            if bit.is_none() && excluded.is_empty() {
+                return groups;
+            }
+            let memberships = bit.map_or(groups.memberships, |b| Group::from_bits_retain(1 << b));
+            InteractionGroups::new(memberships, groups.filter - excluded, InteractionTestMode::And)
+        };
+        plan.collision = narrow(plan.collision, membership[0], excluded[0]);
+        plan.solver = narrow(plan.solver, membership[1], excluded[1]);
+        plan
+    }
+}
+
+/// `Some(dynamic)` if collider `c` may carry or leave out an entry's bit:
+/// native with Rapier's default groups in its class's plan and in its
+/// project's settings, in no pinned pair, not native by a personal rule.
+fn eligible(request: &Request<'_>, facts: &Facts<'_>, c: ColliderHandle) -> Option<bool> {
+    let base = (facts.base)(c)?;
+    if base.plan.hooked() || base.personal || (facts.pinned)(c) {
+        return None;
+    }
+    let own = (request.own)(c, request.colliders.get(c)?);
+    let all = InteractionGroups::all();
+    let defaults = [base.plan.collision, base.plan.solver, own.collision, own.solver];
+    defaults.iter().all(|&g| g == all).then_some(base.dynamic)
+}

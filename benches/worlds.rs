@@ -299,7 +299,8 @@ struct Stream {
 }
 
 /// The stream's world, with its marker far away, and the rules: the chunk
-/// group, and the marker in a group it ignores.
+/// group, whose tiles ignore each other, and the marker in a group it
+/// ignores.
 fn stream(specific: bool) -> (PhysicsWorld, CollisionRuleSet, Stream) {
     let mut world = PhysicsWorld::new();
     let marker =
@@ -309,6 +310,12 @@ fn stream(specific: bool) -> (PhysicsWorld, CollisionRuleSet, Stream) {
     let (chunk_group, far) = (rules.create_group(), rules.create_group());
     rules.set_group(marker, Some(far));
     rules.set_group_rule(chunk_group, far, CollisionRule::NoPair);
+    // The tiles are fixed: without this rule their pairs with each other
+    // are `Normal`, which two non-dynamic bodies get as `NoResponse`
+    // (contacts, no response), and Rapier would compute contacts between
+    // every two neighbouring tiles (`docs/performance.md`, "Why is my
+    // world slow").
+    rules.set_group_rule(chunk_group, chunk_group, CollisionRule::NoPair);
     let stream = Stream {
         step: 0,
         chunks: VecDeque::new(),

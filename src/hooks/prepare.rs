@@ -171,6 +171,25 @@ impl RuleHooks {
         for &node in nodes.iter().chain(changes.subjects()) {
             self.watch(bodies, colliders, node);
         }
+        // A subject's colliders keep their plans, but where a personal rule
+        // decides them: Rapier's groups say a personal rule only for
+        // colliders no entry reaches (see `planner::personal`).
+        let mut nodes = nodes;
+        for &subject in changes.subjects() {
+            let rules = &self.decide.rules;
+            let personal = self
+                .colliders_under(subject, bodies, colliders)
+                .into_iter()
+                .any(|c| {
+                    rules
+                        .hierarchy
+                        .chain(bodies, colliders, Node::Collider(c))
+                        .any(|n| rules.record(n).is_some_and(|r| r.personal.is_decided()))
+                });
+            if personal {
+                nodes.push(subject);
+            }
+        }
         // The decisions of entries the edits removed end, and what they said
         // of the colliders under both nodes with them.
         let mut ended = Vec::new();
@@ -181,7 +200,6 @@ impl RuleHooks {
                     && rules.specific(y, x) == CollisionRule::Defer
             }));
         }
-        let mut nodes = nodes;
         nodes.extend(ended);
         Changed {
             nodes,
@@ -215,7 +233,9 @@ impl RuleHooks {
         let ended = self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
         changed.nodes.extend(ended);
         for &c in &look.released {
-            self.planned.plan.colliders.remove(c);
+            if self.planned.plan.forget(c) {
+                self.queued.replan.get_or_insert(PlanCause::NewClass);
+            }
         }
         if !(look.removed_colliders.is_empty() && look.released.is_empty()) {
             self.count_hooked();
@@ -241,8 +261,8 @@ impl RuleHooks {
     /// Colliders came or went in a world whose plan shares group bits or
     /// collision types with every collider's project settings: the room
     /// those settings leave is read again (a read of each collider, no
-    /// planning), and the plan made again only if the room no longer holds
-    /// the one it was made in (`docs/architecture.md`, "Cost per step").
+    /// planning), and the plan made again only if the room changed
+    /// (`docs/architecture.md`, "Cost per step").
     fn check_room(&mut self, colliders: &ColliderSet) {
         let Some((room, count)) = self.planned.plan.room else {
             return;
@@ -251,7 +271,9 @@ impl RuleHooks {
             return;
         }
         let now = Room::of_world(colliders, |h, c| self.own_settings(h, c));
-        if now.contains(room) {
+        // Bits are taken from the room: a plan made in another room would
+        // take others.
+        if now == room {
             self.planned.plan.room = Some((room, colliders.len()));
         } else {
             self.queued.replan.get_or_insert(PlanCause::ProjectSettings);
@@ -404,7 +426,9 @@ impl RuleHooks {
         for &(handle, body) in removed {
             self.pairs.remove_collider(handle);
             self.decide.rules.remove_node(handle);
-            self.planned.plan.colliders.remove(handle);
+            if self.planned.plan.forget(handle) {
+                self.queued.replan.get_or_insert(PlanCause::NewClass);
+            }
             self.planned.written.remove(handle);
             gone.push(Node::Collider(handle));
             // A body that keeps other colliders is in the look's `left`.

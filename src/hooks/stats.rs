@@ -53,9 +53,13 @@ pub enum PlanCause {
     /// A live pair's override or manifold setting changed: one of its
     /// colliders is hooked.
     PinnedPair,
-    /// A changed collider needs what only a whole plan gives: a class no
-    /// native collider had, a personal rule whose exactness depends on
-    /// every other collider's personal rules, or a pinned pair.
+    /// A changed, added or removed collider needs what only a whole plan
+    /// gives: a class (a group, with dynamic or other members) no planned
+    /// collider had, or whose last member left, since the groups' settings
+    /// follow which classes have members; a personal rule that came or went
+    /// while some collider's chain says `NoPair` or `NoResponse`, since
+    /// whether Rapier's groups say that depends on every collider's
+    /// personal rules; or a pinned pair.
     NewClass,
 }
 

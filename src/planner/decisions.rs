@@ -12,10 +12,11 @@
 //! and gives way to a hooked side where it is no longer exact; a hooked side
 //! is always exact.
 
-use hashbrown::HashMap;
+use hashbrown::{HashMap, HashSet};
 use super::super::rapier::prelude::*;
 
 use super::carriers::side_cost;
+use super::class::Class;
 use super::collider_plan::ColliderPlan;
 use super::plan::{Request, ordered};
 use super::super::{CollisionRule, Node};
@@ -45,6 +46,10 @@ pub(crate) struct Base {
     pub(crate) plan: ColliderPlan,
     /// Native by a personal rule (never carries a bit).
     pub(crate) personal: bool,
+    /// Its chain carries a personal rule.
+    pub(crate) has_personal: bool,
+    /// Its class by its chain (whether or not its group is native).
+    pub(crate) class: Option<Class>,
     pub(crate) dynamic: bool,
     /// Its body: with the parent map (whose edits plan everything), what
     /// its chain is.
@@ -117,9 +122,10 @@ impl Decisions {
     }
 
     /// Forgets the entries listed under `node` that `ended` says have ended
-    /// (a removed object's, or one an edit removed), and returns the nodes
-    /// of those that had a decision: the colliders under them are planned
-    /// again, for what the decision said of them ended too.
+    /// (a removed object's, or one an edit removed), and returns their
+    /// nodes: the colliders under them are planned again, for what the
+    /// decision said of them ended too, and a personal rule may decide them
+    /// now that no entry reaches them.
     pub(crate) fn forget_ended(
         &mut self,
         node: Node,
@@ -133,11 +139,41 @@ impl Decisions {
             .collect();
         let mut nodes = Vec::new();
         for entry in gone {
-            if self.forget(entry).is_some() {
-                nodes.extend([entry.0, entry.1]);
-            }
+            self.forget(entry);
+            nodes.extend([entry.0, entry.1]);
         }
         nodes
+    }
+
+    /// Whether `entry` has a decision.
+    pub(super) fn made(&self, entry: (Node, Node)) -> bool {
+        self.made.contains_key(&entry)
+    }
+
+    /// The entries with a `Bits` decision that a new entry `e` may link
+    /// (a node of `e` in the chains of each side's colliders, which makes
+    /// their bit inexact): those listed under the chains of the colliders
+    /// under both of `e`'s nodes.
+    pub(super) fn linked_by(&self, request: &Request<'_>, e: (Node, Node)) -> Vec<(Node, Node)> {
+        let Request {
+            rules,
+            bodies,
+            colliders,
+            ..
+        } = *request;
+        let near = |node: Node| -> HashSet<(Node, Node)> {
+            rules
+                .colliders_under(node, bodies, colliders)
+                .into_iter()
+                .flat_map(|c| rules.hierarchy.chain(bodies, colliders, Node::Collider(c)))
+                .flat_map(|n| self.listed(n).iter().copied())
+                .filter(|other| matches!(self.made.get(other), Some(Decision::Bits { .. })))
+                .collect()
+        };
+        let (a, b) = (near(e.0), near(e.1));
+        let mut linked: Vec<(Node, Node)> = a.intersection(&b).copied().filter(|&o| o != e).collect();
+        linked.sort_unstable();
+        linked
     }
 
     fn list(&mut self, entry: (Node, Node)) {

@@ -36,7 +36,7 @@ use super::class::{Class, native_class};
 use super::collider_plan::ColliderPlan;
 use super::decisions::{Base, Decisions, Facts};
 use super::group_settings::{GroupSettings, default_refuses};
-use super::personal::personal_natives;
+use super::personal::{first_personal, personal_natives, personal_rule};
 use super::room::Room;
 use super::super::model::{HandleMap, dynamic_body};
 use super::super::world::{PairKey, Settings};
@@ -60,9 +60,10 @@ pub(crate) struct Plan {
     /// plan gives no group a bit and relies on no collision type, so that
     /// no project setting can conflict with it.
     pub(crate) room: Option<(Room, usize)>,
-    /// Some collider is native by a personal `NoPair` or `NoResponse`,
-    /// which a personal rule elsewhere can make inexact: a collider whose
-    /// chain has a personal rule is then planned with everything.
+    /// Some dynamic collider's chain says a personal `NoPair` or
+    /// `NoResponse`, which Rapier's groups say only where no collider says
+    /// a less restrictive one closer to its root: a change of who carries
+    /// personal rules is then planned with everything.
     pub(super) personal_restricts: bool,
     /// Each planned collider's plan before the entries (see [`Base`]).
     pub(super) base: HashMap<ColliderHandle, Base>,
@@ -71,9 +72,40 @@ pub(crate) struct Plan {
     /// The bits the groups took (raw): entries take theirs from the rest of
     /// the room.
     pub(super) group_bits: u32,
+    /// How many planned colliders each class has (by their chains): the
+    /// groups' settings follow which classes have members.
+    pub(super) class_counts: HashMap<Class, usize>,
 }
 
 impl Plan {
+    /// Forgets `collider` (removed, or no longer reached); `true` if the
+    /// whole plan must be made again: the last member of a class left (the
+    /// groups' settings follow which classes have members), or who carries
+    /// personal rules changed where that decides them (see
+    /// [`Plan::personal_restricts`]).
+    pub(crate) fn forget(&mut self, collider: ColliderHandle) -> bool {
+        self.colliders.remove(collider);
+        let Some(base) = self.base.remove(&collider) else {
+            return false;
+        };
+        let emptied = base.class.is_some_and(|class| self.count_out(class));
+        emptied || (self.personal_restricts && base.has_personal)
+    }
+
+    /// One member less of `class`; `true` if that was its last (a default
+    /// class always counts as having members).
+    pub(super) fn count_out(&mut self, class: Class) -> bool {
+        let Some(count) = self.class_counts.get_mut(&class) else {
+            return false;
+        };
+        *count -= 1;
+        if *count > 0 {
+            return false;
+        }
+        self.class_counts.remove(&class);
+        class != Class::unreached(class.dynamic)
+    }
+
     /// The plan entry of `collider`, or the defaults of an unreached one.
     pub(crate) fn entry(&self, collider: ColliderHandle, dynamic: bool) -> ColliderPlan {
         self.colliders
@@ -173,7 +205,15 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
     // `personal_rule`) are native where Rapier's test gives each of their
     // pairs the rule the personal stage gives it.
     let personal = personal_natives(request, &classes);
-    plan.personal_restricts = personal.values().any(|&r| r != CollisionRule::Normal);
+    // Whether Rapier's groups say a personal `NoPair` or `NoResponse`
+    // depends on every collider's personal rules: while one is said
+    // (natively or by the hook), a change of who carries personal rules is
+    // planned with everything.
+    plan.personal_restricts = classes.iter().any(|&(h, class, dynamic)| {
+        class.is_none()
+            && dynamic
+            && personal_rule(rules, bodies, colliders, h).is_some_and(|(r, _)| r != CollisionRule::Normal)
+    });
 
     // Hooked by their own chains or groups.
     let mut hooked: HashSet<ColliderHandle> = classes
@@ -216,11 +256,17 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
         };
         let personal = personal.contains_key(&handle) && !entry.hooked();
         let body = colliders.get(handle).and_then(|c| c.parent());
+        let has_personal = first_personal(rules, bodies, colliders, handle).is_some();
+        if let Some(class) = class {
+            *plan.class_counts.entry(class).or_default() += 1;
+        }
         plan.base.insert(
             handle,
             Base {
                 plan: entry,
                 personal,
+                has_personal,
+                class,
                 dynamic,
                 body,
             },

@@ -50,8 +50,18 @@ pub(crate) fn replan_some(
             return None;
         }
         if let Some(base) = base_of(plan, request, handle)? {
-            if plan.base.insert(handle, base) != Some(base) {
+            let old = plan.base.insert(handle, base);
+            if old != Some(base) {
                 moved.insert(handle);
+                if let Some(class) = base.class {
+                    *plan.class_counts.entry(class).or_default() += 1;
+                }
+                // The last member of its class left, or its personal rule
+                // went while that decides others' (see `Plan::forget`).
+                let emptied = old.and_then(|o| o.class).is_some_and(|c| plan.count_out(c));
+                if emptied || old.is_some_and(|o| o.has_personal) && plan.personal_restricts {
+                    return None;
+                }
             }
             if seen.insert(handle) {
                 asked.push(handle);
@@ -79,6 +89,18 @@ pub(crate) fn replan_some(
     }
     entries.sort_unstable();
     entries.dedup();
+    // A new entry may link the sides of an entry that Rapier's groups
+    // decide with a bit, which must then be checked again.
+    let linked: Vec<(Node, Node)> = entries
+        .iter()
+        .filter(|&&e| !plan.decisions.made(e))
+        .flat_map(|&e| plan.decisions.linked_by(request, e))
+        .collect();
+    if !linked.is_empty() {
+        entries.extend(linked);
+        entries.sort_unstable();
+        entries.dedup();
+    }
     let changed = {
         let Plan {
             base,
@@ -161,7 +183,8 @@ fn base_of(plan: &Plan, request: &Request<'_>, handle: ColliderHandle) -> Option
     }
     let dynamic = dynamic_body(bodies, collider.parent());
     let mut personal_native = false;
-    let entry = match native_class(rules, bodies, colliders, handle, dynamic) {
+    let class = native_class(rules, bodies, colliders, handle, dynamic);
+    let entry = match class {
         None if dynamic && personal.flatten() == Some(CollisionRule::Normal) => {
             personal_native = true;
             ColliderPlan::personal(CollisionRule::Normal)
@@ -180,6 +203,8 @@ fn base_of(plan: &Plan, request: &Request<'_>, handle: ColliderHandle) -> Option
     Some(Some(Base {
         plan: entry,
         personal: personal_native,
+        has_personal: personal.is_some(),
+        class,
         dynamic,
         body: collider.parent(),
     }))

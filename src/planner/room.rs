@@ -70,14 +70,6 @@ impl Room {
             && (self.widened || !own.widened())
     }
 
-    /// Whether this room holds all of `other`: a plan made in `other` stays
-    /// exact in a world whose settings leave this room.
-    pub(crate) fn contains(self, other: Room) -> bool {
-        self.collision.contains(other.collision)
-            && self.solver.contains(other.solver)
-            && self.widened == other.widened
-    }
-
     /// The bits free for both collision and solver groups (a group's bit
     /// serves both).
     pub(crate) fn bits(self) -> Group {

@@ -123,6 +123,73 @@ proptest! {
     }
 }
 
+/// One step of a world that changes every step: objects come (with every
+/// kind of body), get rules of every kind (specific entries that Rapier's
+/// groups decide and those the hook carries, personal rules, groups), the
+/// project sets layers on some, objects go, and the world steps once.
+fn churn_round() -> impl Strategy<Value = Vec<Edit>> {
+    let n = 0..256usize;
+    let arrive = (-1.5f32..1.5, 0.4f32..3.0, 0..KINDS.len())
+        .prop_map(|(x, y, k)| Edit::AddCube(x, y, k));
+    let rule_edit = prop_oneof![
+        4 => (n.clone(), n.clone(), rule()).prop_map(|(x, y, r)| Edit::Specific(x, y, r)),
+        2 => (n.clone(), rule()).prop_map(|(x, r)| Edit::Personal(x, r)),
+        2 => (n.clone(), proptest::option::of(0..GROUPS)).prop_map(|(x, g)| Edit::Group(x, g)),
+        1 => (n.clone(), n.clone()).prop_map(|(x, y)| Edit::RemoveSpecific(x, y)),
+        1 => (n.clone(), 0..LAYERS.len(), 0..LAYERS.len())
+            .prop_map(|(c, m, f)| Edit::ProjectCollision(c, m, f)),
+        1 => (n.clone(), 0..LAYERS.len(), 0..LAYERS.len())
+            .prop_map(|(c, m, f)| Edit::ProjectSolver(c, m, f)),
+        1 => (n.clone(), n.clone()).prop_map(|(c, b)| Edit::MoveCollider(c, b)),
+    ];
+    let leave = prop_oneof![
+        2 => n.clone().prop_map(Edit::RemoveBody),
+        1 => n.clone().prop_map(Edit::RemoveCollider),
+    ];
+    (
+        proptest::collection::vec(arrive, 6..20),
+        proptest::collection::vec(rule_edit, 6..24),
+        proptest::collection::vec(leave, 4..18),
+    )
+        .prop_map(|(arrive, rules, leave)| {
+            let mut round = arrive;
+            round.extend(rules);
+            round.extend(leave);
+            round.push(Edit::Step(1));
+            round
+        })
+}
+
+proptest! {
+    #![proptest_config(Config {
+        cases: env_or("LIVE_CASES", 256, |v| v.parse().ok()) / 8,
+        rng_seed: RngSeed::Fixed(env_or("LIVE_SEED", 0x11fe_9a11, |v| u64::from_str_radix(v, 16).ok()) ^ 0xc4),
+        failure_persistence: None,
+        ..Config::default()
+    })]
+
+    /// Heavy churn: dozens of objects in and out every step, with every
+    /// rule kind, entry bits and project layers; the plans of the changes
+    /// alone see what a whole plan every step sees.
+    #[test]
+    fn the_upkeep_sees_what_a_full_pass_sees_under_churn(
+        cubes in proptest::collection::vec((-1.5f32..1.5, 0.4f32..3.0, 0..KINDS.len()), 2..8),
+        rounds in proptest::collection::vec(churn_round(), 3..7),
+    ) {
+        let edits: Vec<Edit> = rounds.into_iter().flatten().collect();
+        let mut upkeep = Run::new(&cubes, true, false);
+        let mut oracle = Run::new(&cubes, true, false);
+        oracle.hooks.set_exhaustive(true);
+        in_lockstep(&mut upkeep, &mut oracle, &edits, |upkeep, oracle| {
+            let (upkeep_both, oracle_both) = live_in_both(upkeep, oracle);
+            prop_assert_eq!(upkeep_both, oracle_both, "live pairs differ");
+            prop_assert_eq!(upkeep.touching(), oracle.touching(), "touching pairs differ");
+            prop_assert_eq!(upkeep.poses(), oracle.poses(), "the worlds moved apart");
+            Ok(())
+        })?;
+    }
+}
+
 /// A live pair and its rule.
 type Live = (Raw, Raw, CollisionRule);
 

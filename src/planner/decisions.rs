@@ -161,18 +161,34 @@ impl Decisions {
             colliders,
             ..
         } = *request;
-        let near = |node: Node| -> HashSet<(Node, Node)> {
+        // The entries listed under the chains of the colliders under `node`
+        // that have a bit (each once per listing).
+        let near = |node: Node| -> Vec<(Node, Node)> {
             rules
                 .colliders_under(node, bodies, colliders)
                 .into_iter()
                 .flat_map(|c| rules.hierarchy.chain(bodies, colliders, Node::Collider(c)))
                 .flat_map(|n| self.listed(n).iter().copied())
+                .filter(|&other| other != e)
                 .filter(|other| matches!(self.made.get(other), Some(Decision::Bits { .. })))
                 .collect()
         };
-        let (a, b) = (near(e.0), near(e.1));
-        let mut linked: Vec<(Node, Node)> = a.intersection(&b).copied().filter(|&o| o != e).collect();
+        // One side is usually a new object whose chains list nothing with a
+        // bit (a ball about its turret): the hub's side is not read then.
+        let (small, large) = if self.listed(e.0).len() <= self.listed(e.1).len() {
+            (e.0, e.1)
+        } else {
+            (e.1, e.0)
+        };
+        let first = near(small);
+        if first.is_empty() {
+            return first;
+        }
+        let first: HashSet<(Node, Node)> = first.into_iter().collect();
+        let mut linked: Vec<(Node, Node)> =
+            near(large).into_iter().filter(|o| first.contains(o)).collect();
         linked.sort_unstable();
+        linked.dedup();
         linked
     }
 

@@ -7,12 +7,14 @@
 //! dynamic) becomes collision groups, solver groups and collision types
 //! through the group-level settings ([`group_settings`]), on the bits the
 //! project's own settings leave ([`room`]); personal rules of dynamic
-//! bodies ([`personal`]) and specific `NoPair` and `NoResponse` entries
-//! ([`entry_bits`]) become groups too where that is exact; every other
-//! specific entry and pinned pair hooks its cheaper side ([`carriers`]).
-//! Each collider's result is a [`ColliderPlan`] ([`collider_plan`]),
-//! combined with the project's settings when the hooks write it. A few
-//! colliders can be planned against the rest of a plan ([`replan`]).
+//! bodies ([`personal`]) become groups too where that is exact; each
+//! specific entry keeps a decision ([`decisions`]): a bit of Rapier's
+//! groups where that is exact, else its cheaper side hooked
+//! ([`carriers`]), as pinned pairs are. Each collider's result is a
+//! [`ColliderPlan`] ([`collider_plan`]), combined with the project's
+//! settings when the hooks write it. The colliders a step's changes reach
+//! are planned against the rest of the plan ([`replan`]), with the same
+//! decisions a whole plan would make.
 //!
 //! The planner reads the [`model`](super::model) and asks the
 //! [`resolve`](super::resolve) stage nothing: its classes are exact where

@@ -4,8 +4,9 @@
 //! live pair names a removed collider. And the planner changes nothing a
 //! user can see: the same world stepped with the planner on and off has the
 //! same live pairs with the same rules, and the same touching pairs. And the
-//! upkeep that looks only at what the rules reach sees what a full pass over
-//! every collider sees.
+//! upkeep that looks only at what the rules reach, and plans only what each
+//! step's changes reach, sees what a full pass over every collider sees,
+//! also under heavy churn.
 //!
 //! The seed and the number of cases are fixed, so that a run is repeatable;
 //! `LIVE_SEED` (hex) and `LIVE_CASES` try others, for example
@@ -20,6 +21,19 @@ use super::world::{Edit, GROUPS, KINDS, LAYERS, Raw, Run, TYPES, env_or};
 
 fn rule() -> impl Strategy<Value = CollisionRule> {
     proptest::sample::select(CollisionRule::ALL.to_vec())
+}
+
+/// The fixed seed and number of cases (see the module's doc), the cases
+/// divided by `share` and the seed varied by `salt` for a test of its own.
+fn live_config(share: u32, salt: u64) -> Config {
+    Config {
+        cases: env_or("LIVE_CASES", 256, |v| v.parse().ok()) / share,
+        rng_seed: RngSeed::Fixed(
+            env_or("LIVE_SEED", 0x11fe_9a11, |v| u64::from_str_radix(v, 16).ok()) ^ salt,
+        ),
+        failure_persistence: None,
+        ..Config::default()
+    }
 }
 
 fn edit() -> impl Strategy<Value = Edit> {
@@ -54,12 +68,7 @@ fn edit() -> impl Strategy<Value = Edit> {
 }
 
 proptest! {
-    #![proptest_config(Config {
-        cases: env_or("LIVE_CASES", 256, |v| v.parse().ok()),
-        rng_seed: RngSeed::Fixed(env_or("LIVE_SEED", 0x11fe_9a11, |v| u64::from_str_radix(v, 16).ok())),
-        failure_persistence: None,
-        ..Config::default()
-    })]
+    #![proptest_config(live_config(1, 0))]
 
     #[test]
     fn live_pairs_follow_every_edit(
@@ -95,31 +104,7 @@ proptest! {
         cubes in proptest::collection::vec((-1.5f32..1.5, 0.4f32..3.0, 0..KINDS.len()), 2..8),
         edits in proptest::collection::vec(edit(), 1..40),
     ) {
-        let mut upkeep = Run::new(&cubes, true, false);
-        let mut oracle = Run::new(&cubes, true, false);
-        oracle.hooks.set_exhaustive(true);
-        in_lockstep(&mut upkeep, &mut oracle, &edits, |upkeep, oracle| {
-            // The oracle plans, and so marks modified, every collider every
-            // step: Rapier's broad phase refits other AABBs when, so a pair
-            // without contacts may be in one graph only (see
-            // `live_in_both`); the touching pairs are compared whole.
-            let (upkeep_both, oracle_both) = live_in_both(upkeep, oracle);
-            prop_assert_eq!(upkeep_both, oracle_both, "live pairs differ");
-            prop_assert_eq!(upkeep.touching(), oracle.touching(), "touching pairs differ");
-            // Which colliders carry the hook flag may follow the order of
-            // edits (a partial plan keeps a flag a full plan would drop), so
-            // each run knows its own hooked pairs: each of them must be a
-            // live pair of the other with the same rule.
-            let (upkeep_live, oracle_live) = (upkeep.live(), oracle.live());
-            for known in upkeep.known().into_iter().filter(|k| holds(oracle, k)) {
-                prop_assert!(oracle_live.contains(&known), "the upkeep knows {:?}, not live so in the oracle", known);
-            }
-            for known in oracle.known().into_iter().filter(|k| holds(upkeep, k)) {
-                prop_assert!(upkeep_live.contains(&known), "the oracle knows {:?}, not live so in the upkeep", known);
-            }
-            prop_assert_eq!(upkeep.poses(), oracle.poses(), "the worlds moved apart");
-            Ok(())
-        })?;
+        upkeep_sees_what_a_full_pass_sees(&cubes, &edits)?;
     }
 }
 
@@ -161,12 +146,8 @@ fn churn_round() -> impl Strategy<Value = Vec<Edit>> {
 }
 
 proptest! {
-    #![proptest_config(Config {
-        cases: env_or("LIVE_CASES", 256, |v| v.parse().ok()) / 8,
-        rng_seed: RngSeed::Fixed(env_or("LIVE_SEED", 0x11fe_9a11, |v| u64::from_str_radix(v, 16).ok()) ^ 0xc4),
-        failure_persistence: None,
-        ..Config::default()
-    })]
+    // A case is several steps of dozens of edits: an eighth of the cases.
+    #![proptest_config(live_config(8, 0xc4))]
 
     /// Heavy churn: dozens of objects in and out every step, with every
     /// rule kind, entry bits and project layers; the plans of the changes
@@ -177,17 +158,39 @@ proptest! {
         rounds in proptest::collection::vec(churn_round(), 3..7),
     ) {
         let edits: Vec<Edit> = rounds.into_iter().flatten().collect();
-        let mut upkeep = Run::new(&cubes, true, false);
-        let mut oracle = Run::new(&cubes, true, false);
-        oracle.hooks.set_exhaustive(true);
-        in_lockstep(&mut upkeep, &mut oracle, &edits, |upkeep, oracle| {
-            let (upkeep_both, oracle_both) = live_in_both(upkeep, oracle);
-            prop_assert_eq!(upkeep_both, oracle_both, "live pairs differ");
-            prop_assert_eq!(upkeep.touching(), oracle.touching(), "touching pairs differ");
-            prop_assert_eq!(upkeep.poses(), oracle.poses(), "the worlds moved apart");
-            Ok(())
-        })?;
+        upkeep_sees_what_a_full_pass_sees(&cubes, &edits)?;
     }
+}
+
+/// The upkeep that plans what the changes reach, against the test oracle
+/// that plans everything every step, stepped in lockstep through `edits`.
+fn upkeep_sees_what_a_full_pass_sees(
+    cubes: &[(f32, f32, usize)],
+    edits: &[Edit],
+) -> Result<(), TestCaseError> {
+        let mut upkeep = Run::new(cubes, true, false);
+    let mut oracle = Run::new(cubes, true, false);
+    oracle.hooks.set_exhaustive(true);
+    in_lockstep(&mut upkeep, &mut oracle, edits, |upkeep, oracle| {
+        // The oracle plans, and so marks modified, every collider every
+        // step: Rapier's broad phase refits other AABBs when, so a pair
+        // without contacts may be in one graph only (see
+        // `live_in_both`); the touching pairs are compared whole.
+        let (upkeep_both, oracle_both) = live_in_both(upkeep, oracle);
+        prop_assert_eq!(upkeep_both, oracle_both, "live pairs differ");
+        prop_assert_eq!(upkeep.touching(), oracle.touching(), "touching pairs differ");
+        // Each run knows the pairs its own hook met: each of them must be a
+        // live pair of the other with the same rule.
+        let (upkeep_live, oracle_live) = (upkeep.live(), oracle.live());
+        for known in upkeep.known().into_iter().filter(|k| holds(oracle, k)) {
+            prop_assert!(oracle_live.contains(&known), "the upkeep knows {:?}, not live so in the oracle", known);
+        }
+        for known in oracle.known().into_iter().filter(|k| holds(upkeep, k)) {
+            prop_assert!(upkeep_live.contains(&known), "the oracle knows {:?}, not live so in the upkeep", known);
+        }
+        prop_assert_eq!(upkeep.poses(), oracle.poses(), "the worlds moved apart");
+        Ok(())
+    })
 }
 
 /// A live pair and its rule.

@@ -132,7 +132,7 @@ pub(crate) struct Request<'a> {
     /// The project's own settings of a collider.
     pub(crate) own: &'a dyn Fn(ColliderHandle, &Collider) -> Settings,
     /// How many pairs a collider has in Rapier's graph now, where the graph
-    /// is at hand: what hooking it costs (see [`carriers`]).
+    /// is at hand: what hooking it costs (see [`side_cost`](super::carriers::side_cost)).
     pub(crate) pairs_of: &'a dyn Fn(ColliderHandle) -> Option<usize>,
     /// The decisions of the plan before, kept (see [`Decisions`]).
     pub(crate) decided: &'a Decisions,

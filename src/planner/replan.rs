@@ -19,7 +19,7 @@ use super::super::{CollisionRule, Node};
 /// (`docs/architecture.md`, "Cost per step"). Each collider's plan before
 /// the entries is its class's (a class the plan already has), a personal
 /// `Normal`, or hooked by its own chain; the entries that reach it are
-/// decided as a whole plan decides them (see [`Decisions`]), and their
+/// decided as a whole plan decides them (see [`Decisions`](super::decisions::Decisions)), and their
 /// decisions applied. Updates the plan's decisions and bases, and returns
 /// the colliders' plans to write. `None` (plan everything again) when a
 /// collider needs what only a whole plan gives: a class no native collider

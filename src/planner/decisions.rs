@@ -70,6 +70,12 @@ pub(crate) struct Decisions {
     /// The bit of each `(other node, kind)`, which its colliders leave out,
     /// and how many entries share it.
     shared: HashMap<(Node, usize), (u32, usize)>,
+    /// How many nodes carry each bit, and how many leave it out: a bit is
+    /// a star, one node on one end and any number on the other, so that
+    /// each of its carriers meets each node that leaves it out through an
+    /// entry (see [`bits_for`](Self::bits_for)).
+    carriers_on: NodesOnBits,
+    others_on: NodesOnBits,
 }
 
 /// What deciding reads besides the rules and the world.
@@ -84,20 +90,50 @@ pub(super) struct Facts<'a> {
     pub(super) free: &'a mut dyn FnMut() -> Group,
 }
 
-/// One more user of `key`'s bit.
-fn count_in<K: std::hash::Hash + Eq>(map: &mut HashMap<K, (u32, usize)>, key: K, bit: u32) {
-    map.entry(key).or_insert((bit, 0)).1 += 1;
+/// One more user of `key`'s bit, and one more node on the bit in `nodes`
+/// if `key` had none.
+fn count_in(
+    map: &mut HashMap<(Node, usize), (u32, usize)>,
+    nodes: &mut NodesOnBits,
+    key: (Node, usize),
+    bit: u32,
+) {
+    let users = map.entry(key).or_insert((bit, 0));
+    if users.1 == 0 {
+        nodes[key.1][bit as usize] += 1;
+    }
+    users.1 += 1;
 }
 
-/// One user less of `key`'s bit.
-fn count_out<K: std::hash::Hash + Eq>(map: &mut HashMap<K, (u32, usize)>, key: K) {
+/// One user less of `key`'s bit, and one node less on the bit in `nodes`
+/// if that was the last.
+fn count_out(
+    map: &mut HashMap<(Node, usize), (u32, usize)>,
+    nodes: &mut NodesOnBits,
+    key: (Node, usize),
+) {
     if let Some(users) = map.get_mut(&key) {
         users.1 -= 1;
         if users.1 == 0 {
+            nodes[key.1][users.0 as usize] -= 1;
             map.remove(&key);
         }
     }
 }
+
+/// An entry whose decision [`Decisions::decide`] undid, to be made again.
+struct Undone {
+    entry: (Node, Node),
+    /// The first node's side holds the rule (the owner's side hooks on a tie).
+    owner_is_first: bool,
+    /// 0 for `NoPair`, 1 for `NoResponse`, else no bit.
+    kind: Option<usize>,
+    /// The colliders under each node.
+    under: (Vec<ColliderHandle>, Vec<ColliderHandle>),
+}
+
+/// How many nodes are on each bit of each kind (`[kind][bit]`).
+type NodesOnBits = [[u32; 32]; 2];
 
 impl Decisions {
     /// The entries listed under `node`.
@@ -223,8 +259,8 @@ impl Decisions {
                 kind,
                 bit,
             } => {
-                count_in(&mut self.carrying, (carrying, kind), bit);
-                count_in(&mut self.shared, (other, kind), bit);
+                count_in(&mut self.carrying, &mut self.carriers_on, (carrying, kind), bit);
+                count_in(&mut self.shared, &mut self.others_on, (other, kind), bit);
             }
             Decision::Hooked { side } => *self.hooked_sides.entry(side).or_default() += 1,
         }
@@ -240,8 +276,8 @@ impl Decisions {
                 kind,
                 ..
             } => {
-                count_out(&mut self.carrying, (carrying, kind));
-                count_out(&mut self.shared, (other, kind));
+                count_out(&mut self.carrying, &mut self.carriers_on, (carrying, kind));
+                count_out(&mut self.shared, &mut self.others_on, (other, kind));
             }
             Decision::Hooked { side } => {
                 if let Some(count) = self.hooked_sides.get_mut(&side) {
@@ -279,6 +315,11 @@ impl Decisions {
             ..
         } = *request;
         let mut changed = Vec::new();
+        // Every decision that no longer holds is undone before any is made
+        // again: a bit the room no longer leaves, or a star another entry
+        // of the same bit left, is then free to be taken anew by the first
+        // entry that asks, whatever the order of the entries.
+        let mut undone = Vec::new();
         for &(x, y) in entries {
             let (xy, yx) = (rules.specific(x, y), rules.specific(y, x));
             if xy == CollisionRule::Defer && yx == CollisionRule::Defer {
@@ -319,14 +360,27 @@ impl Decisions {
                 // No pair to decide yet: decided when colliders come.
                 None => cx.is_empty() || cy.is_empty(),
             };
-            if kept {
-                continue;
+            if !kept {
+                self.unmake((x, y));
+                undone.push(Undone {
+                    entry: (x, y),
+                    owner_is_first: xy != CollisionRule::Defer,
+                    kind,
+                    under: (cx, cy),
+                });
             }
-            self.unmake((x, y));
+        }
+        for Undone {
+            entry: (x, y),
+            owner_is_first,
+            kind,
+            under: (cx, cy),
+        } in undone
+        {
             let bits = kind.and_then(|kind| self.bits_for(request, facts, (x, y), &cx, &cy, kind));
             let decision = bits.unwrap_or_else(|| {
                 // The owner's side on a tie.
-                let (owner, owner_side, other, other_side) = if xy != CollisionRule::Defer {
+                let (owner, owner_side, other, other_side) = if owner_is_first {
                     (x, &cx, y, &cy)
                 } else {
                     (y, &cy, x, &cx)
@@ -376,13 +430,30 @@ impl Decisions {
             (false, true) => (e.1, cy, e.0, cx),
             (false, false) => return None,
         };
+        // A bit is a star: every carrier of it meets every node that leaves
+        // it out through an entry. So the entries about one `other` share
+        // its bit while `other` is the only node leaving it out (many ghosts
+        // over one floor), and the entries of one carrier share its bit
+        // while it is the only carrier (a car through many pickups); else a
+        // free bit.
+        let carried_bit = self.carrying.get(&(carrying, kind)).map(|&(bit, _)| bit);
+        let free = (facts.free)();
         let bit = match self.shared.get(&(other, kind)) {
-            Some(&(bit, _)) => bit,
-            None => {
-                let free = (facts.free)() - self.used();
-                (0..32u32).find(|&b| free.contains(Group::from_bits_retain(1 << b)))?
-            }
+            Some(&(bit, _)) if carried_bit == Some(bit) => bit,
+            Some(&(bit, _)) if self.others_on[kind][bit as usize] == 1 => bit,
+            Some(_) => return None,
+            None => match carried_bit {
+                Some(bit) if self.carriers_on[kind][bit as usize] == 1 => bit,
+                _ => {
+                    let unused = free - self.used();
+                    (0..32u32).find(|&b| unused.contains(Group::from_bits_retain(1 << b)))?
+                }
+            },
         };
+        // A shared bit the room no longer leaves is not taken again.
+        if !free.contains(Group::from_bits_retain(1 << bit)) {
+            return None;
+        }
         self.bits_exact(request, facts, e, carried, others, kind, bit)
             .then_some(Decision::Bits {
                 carrying,

@@ -120,6 +120,84 @@ fn entries_about_one_floor_share_one_bit_and_every_ghost_passes() {
 }
 
 #[test]
+fn entries_of_one_car_share_its_bit_and_it_drives_through_every_pickup() {
+    // A car with a NoResponse entry about each of eight fixed pickups: the
+    // entries share the car's one bit, which every pickup leaves out;
+    // nothing is hooked (`architecture.md`, "The planner"). The car drives
+    // through the five in its path. A bit is a star: a ghost's entry about
+    // one of the pickups cannot make the ghost a carrier of the car's bit
+    // (it would pass every pickup), so a second ghost with the same entry,
+    // over another pickup, rests on it; a cube with no rule rests on a
+    // third.
+    let mut scene = Scene::new();
+    let (car, car_collider) = scene.cube(-14.0, 0.5);
+    let mut pickup = |x: f32| {
+        let body = scene
+            .world
+            .insert_body(RigidBodyBuilder::fixed().translation(at(x, 0.5)));
+        let collider = scene
+            .world
+            .insert_collider(cuboid(0.5, 0.5, 0.5), Some(body));
+        (body, collider)
+    };
+    let in_path: Vec<_> = [-11.0, -9.0, -7.0, -5.0, -3.0].map(&mut pickup).into();
+    let far: Vec<_> = [10.0, 14.0, 18.0].map(&mut pickup).into();
+    let (g1, _) = scene.cube(10.0, 3.0);
+    let (g2, _) = scene.cube(14.0, 3.0);
+    let (bystander, _) = scene.cube(18.0, 3.0);
+    let mut hooks = RuleHooks::default();
+    for &(p, _) in in_path.iter().chain(&far) {
+        hooks.rules_mut().set_specific(car, p, NoResponse);
+    }
+    hooks.step(&mut scene.world);
+    let unhooked = in_path
+        .iter()
+        .chain(&far)
+        .filter(|&&(_, c)| !hooked(&scene, c))
+        .count();
+    assert!(
+        !hooked(&scene, car_collider) && unhooked == 8,
+        "car hooked {}, {unhooked} of 8 pickups not hooked: {:?}",
+        hooked(&scene, car_collider),
+        hooks.stats()
+    );
+    let bit = scene.world.colliders[car_collider].solver_groups().memberships;
+    assert_eq!(bit.bits().count_ones(), 1, "the car carries one bit: {bit:?}");
+    for &(_, c) in in_path.iter().chain(&far) {
+        let filter = scene.world.colliders[c].solver_groups().filter;
+        assert_eq!(filter, Group::ALL - bit, "a pickup leaves out the car's bit");
+    }
+    for ghost in [g1, g2] {
+        hooks.rules_mut().set_specific(ghost, far[0].0, NoResponse);
+    }
+    for _ in 0..150 {
+        let mut v = scene.world.bodies[car].linvel();
+        v.x = 6.0;
+        scene.world.bodies[car].set_linvel(v, true);
+        hooks.step(&mut scene.world);
+    }
+    assert!(
+        scene.x(car) > 0.0 && (scene.y(car) - 0.5).abs() < 0.05,
+        "the car drove through the pickups: x = {}, y = {}",
+        scene.x(car),
+        scene.y(car)
+    );
+    assert!(!hooked(&scene, car_collider), "the car stays unhooked");
+    assert!(
+        scene.y(g1) < 0.7,
+        "the first ghost passed its pickup: y = {}",
+        scene.y(g1)
+    );
+    for (name, body) in [("the second ghost", g2), ("the cube", bystander)] {
+        assert!(
+            scene.y(body) > 1.4,
+            "{name} rests on its pickup: y = {}",
+            scene.y(body)
+        );
+    }
+}
+
+#[test]
 fn past_the_free_bits_the_ghosts_are_hooked_and_every_one_passes() {
     // 40 ghosts side by side, each with a NoResponse entry about a pad of
     // its own above the floor: each pad's entries take a bit while they last

@@ -62,7 +62,9 @@ pub(crate) struct Base {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Decisions {
     made: HashMap<(Node, Node), Decision>,
-    listed: HashMap<Node, Vec<(Node, Node)>>,
+    /// A set per node: a hub is named by hundreds of entries, which come
+    /// and go one at a time.
+    listed: HashMap<Node, HashSet<(Node, Node)>>,
     /// How many decisions hook the colliders under each node.
     hooked_sides: HashMap<Node, usize>,
     /// The bit each `(carrying node, kind)` carries, and for how many entries.
@@ -136,9 +138,14 @@ struct Undone {
 type NodesOnBits = [[u32; 32]; 2];
 
 impl Decisions {
-    /// The entries listed under `node`.
-    pub(super) fn listed(&self, node: Node) -> &[(Node, Node)] {
-        self.listed.get(&node).map_or(&[], Vec::as_slice)
+    /// The entries listed under `node`, in no order.
+    pub(super) fn listed(&self, node: Node) -> impl Iterator<Item = (Node, Node)> + '_ {
+        self.listed.get(&node).into_iter().flatten().copied()
+    }
+
+    /// How many entries are listed under `node`.
+    fn listed_count(&self, node: Node) -> usize {
+        self.listed.get(&node).map_or(0, HashSet::len)
     }
 
     /// Forgets every entry not in `keep` (sorted): a whole plan's entries.
@@ -167,12 +174,9 @@ impl Decisions {
         node: Node,
         ended: impl Fn((Node, Node)) -> bool,
     ) -> Vec<Node> {
-        let gone: Vec<(Node, Node)> = self
-            .listed(node)
-            .iter()
-            .copied()
-            .filter(|&e| ended(e))
-            .collect();
+        let mut gone: Vec<(Node, Node)> = self.listed(node).filter(|&e| ended(e)).collect();
+        // In the node order, whatever the set's.
+        gone.sort_unstable();
         let mut nodes = Vec::new();
         for entry in gone {
             self.forget(entry);
@@ -204,14 +208,14 @@ impl Decisions {
                 .colliders_under(node, bodies, colliders)
                 .into_iter()
                 .flat_map(|c| rules.hierarchy.chain(bodies, colliders, Node::Collider(c)))
-                .flat_map(|n| self.listed(n).iter().copied())
+                .flat_map(|n| self.listed(n))
                 .filter(|&other| other != e)
                 .filter(|other| matches!(self.made.get(other), Some(Decision::Bits { .. })))
                 .collect()
         };
         // One side is usually a new object whose chains list nothing with a
         // bit (a ball about its turret): the hub's side is not read then.
-        let (small, large) = if self.listed(e.0).len() <= self.listed(e.1).len() {
+        let (small, large) = if self.listed_count(e.0) <= self.listed_count(e.1) {
             (e.0, e.1)
         } else {
             (e.1, e.0)
@@ -230,10 +234,7 @@ impl Decisions {
 
     fn list(&mut self, entry: (Node, Node)) {
         for node in [entry.0, entry.1] {
-            let listed = self.listed.entry(node).or_default();
-            if !listed.contains(&entry) {
-                listed.push(entry);
-            }
+            self.listed.entry(node).or_default().insert(entry);
         }
     }
 
@@ -241,7 +242,7 @@ impl Decisions {
         let decision = self.unmake(entry);
         for node in [entry.0, entry.1] {
             if let Some(listed) = self.listed.get_mut(&node) {
-                listed.retain(|&e| e != entry);
+                listed.remove(&entry);
                 if listed.is_empty() {
                     self.listed.remove(&node);
                 }
@@ -503,13 +504,20 @@ impl Decisions {
             nodes
         };
         let (from, to) = (chains(carried), chains(others));
-        // Another entry from a node of `a` to a node of `b` than `e`.
+        // Another entry from a node of `a` to a node of `b` than `e`. A hub's
+        // record holds an entry for each of hundreds of objects (a turret's
+        // balls), a chain a few nodes: the smaller is walked.
         let other_entry = |a: &[Node], b: &[Node]| {
             a.iter().any(|&n| {
                 rules.record(n).is_some_and(|r| {
-                    r.specific
-                        .keys()
-                        .any(|&m| b.binary_search(&m).is_ok() && ordered(n, m) != e)
+                    if r.specific.len() <= b.len() {
+                        r.specific
+                            .keys()
+                            .any(|&m| b.binary_search(&m).is_ok() && ordered(n, m) != e)
+                    } else {
+                        b.iter()
+                            .any(|&m| r.specific.contains_key(&m) && ordered(n, m) != e)
+                    }
                 })
             })
         };

@@ -83,7 +83,7 @@ pub(crate) fn replan_some(
                 entries.extend(record.specific.keys().map(|&other| ordered(node, other)));
             }
             if moved {
-                entries.extend(plan.decisions.listed(node).iter().copied());
+                entries.extend(plan.decisions.listed(node));
             }
         }
     }

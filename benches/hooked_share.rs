@@ -101,9 +101,10 @@ fn measure(n: usize, resting: bool, share: usize) -> Point {
     let mut runs: Vec<(f64, f64, f64)> = (0..3)
         .map(|_| {
             let (mut plain, mut rules) = (Duration::ZERO, Duration::ZERO);
-            for _ in 0..50 {
-                plain += twins.time(1, false);
-                rules += twins.time(1, true);
+            for i in 0..50 {
+                let pair = twins.time_pair(i % 2 == 1);
+                plain += pair.plain;
+                rules += pair.rules;
             }
             let (p, r) = (plain.as_secs_f64() / 50.0, rules.as_secs_f64() / 50.0);
             (r / p, p, r)

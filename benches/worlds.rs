@@ -13,14 +13,21 @@
 //!   against the same ghost excluded from the floor by hand-written Rapier
 //!   solver groups;
 //! - `pile`: the 1,000-box pile of `benches/step.rs` allowed to fall
-//!   asleep, with no rules and with specific rules on 5% of the bodies.
+//!   asleep, with no rules and with specific rules on 5% of the bodies;
+//! - `churn`: worlds that change every step (shooters, a streamed level, a
+//!   car driven through a pickup field), and `rate`: balls fired and
+//!   removed at 0 to 200 a step over levels of two sizes
+//!   (`docs/performance.md`, "Worlds that change").
 //!
 //! Each variant steps two identical worlds in lockstep, one plain, one with
 //! the rules, and times them back to back (the paired ratio: median, min
 //! and max of five runs). `control` variants step both worlds plainly: the
 //! noise floor of the method, which for steps of a microsecond is several
-//! percent (the second world of a pair meets other cache contents). `WORLDS_OUT=docs` writes `upkeep.csv` and
-//! `upkeep.svg` there (step time against world size, level and field).
+//! percent (the second world of a pair meets other cache contents).
+//! `WORLDS_OUT=docs` writes `upkeep.csv` and `upkeep.svg` there (step time
+//! against world size, level and field) when the level runs, and
+//! `churn_rate.csv` and `churn_rate.svg` (extra time against the changes
+//! per step) when the `rate` variants run.
 //!
 //! `cargo bench --bench worlds` (criterion, then the paired ratios);
 //! `WORLDS_PAIRED_ONLY=1` skips criterion.
@@ -368,35 +375,244 @@ impl Churn for Stream {
     }
 }
 
+/// A pickup field: a car (one body: a chassis and four wheels, five
+/// colliders) driven round a ring of 100 fixed pickups on a floor, its
+/// velocity set every step as a game's controller would. In the rules world
+/// each pickup says `set_specific(car, pickup, NoResponse)`: the car passes
+/// through, the pair keeps its contacts (to count the pickup); in the plain
+/// twin, hand-written solver groups set the car apart from the pickups.
+struct Pickups {
+    car: RigidBodyHandle,
+}
+
+/// The ring's radius (m) and the car's speed (m/s): a lap every 940 steps.
+const RING: f32 = 20.0;
+const SPEED: f32 = 8.0;
+
+fn pickups(by_hand: bool) -> (PhysicsWorld, CollisionRuleSet, Pickups) {
+    let mut world = PhysicsWorld::new();
+    let ground = world.insert_body(RigidBodyBuilder::fixed());
+    world.insert_collider(
+        ColliderBuilder::cuboid(40.0, 0.5, 40.0).translation(Vector::new(0.0, -0.5, 0.0)),
+        Some(ground),
+    );
+    let car = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(Vector::new(RING, 0.0, 0.0))
+            .lock_rotations()
+            .can_sleep(false),
+    );
+    let solver = |member: Group, excluded: Group| {
+        InteractionGroups::new(member, Group::ALL - excluded, InteractionTestMode::And)
+    };
+    let mut parts =
+        vec![ColliderBuilder::cuboid(1.0, 0.25, 0.6).translation(Vector::new(0.0, 0.8, 0.0))];
+    for (x, z) in [(-0.7, -0.5), (-0.7, 0.5), (0.7, -0.5), (0.7, 0.5)] {
+        parts.push(
+            ColliderBuilder::ball(0.3)
+                .translation(Vector::new(x, 0.3, z))
+                .friction(0.0),
+        );
+    }
+    for part in parts {
+        let part = if by_hand {
+            part.solver_groups(solver(Group::GROUP_2, Group::GROUP_3))
+        } else {
+            part
+        };
+        world.insert_collider(part, Some(car));
+    }
+    let mut rules = CollisionRuleSet::default();
+    for i in 0..100 {
+        let angle = i as f32 / 100.0 * std::f32::consts::TAU;
+        let pickup = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(
+            RING * angle.cos(),
+            0.8,
+            RING * angle.sin(),
+        )));
+        let mut coin = ColliderBuilder::ball(0.4);
+        if by_hand {
+            coin = coin.solver_groups(solver(Group::GROUP_3, Group::GROUP_2));
+        } else {
+            rules.set_specific(car, pickup, CollisionRule::NoResponse);
+        }
+        world.insert_collider(coin, Some(pickup));
+    }
+    (world, rules, Pickups { car })
+}
+
+impl Churn for Pickups {
+    fn apply(&mut self, world: &mut PhysicsWorld, _: Option<&mut CollisionRuleSet>) {
+        let car = &mut world.bodies[self.car];
+        let at = car.translation();
+        let angle = at.z.atan2(at.x);
+        let fall = car.linvel().y;
+        car.set_linvel(
+            Vector::new(-angle.sin() * SPEED, fall, angle.cos() * SPEED),
+            true,
+        );
+    }
+}
+
+/// Balls in and out at a rate: one fixed turret (a 3 m cube) in the middle
+/// of a level of fixed tiles (each its own body, no rules), firing
+/// `per_step` balls a step from points inside itself, each ball removed 20
+/// steps after it was fired. The balls ignore the turret: in the rules
+/// world through `set_specific(ball, turret, NoPair)` or, with `group`,
+/// through a group rule; in the plain twin through hand-written collision
+/// groups.
+struct Rate {
+    turret: RigidBodyHandle,
+    per_step: usize,
+    shots: Option<CollisionGroup>,
+    fired: VecDeque<Vec<RigidBodyHandle>>,
+    step: u32,
+}
+
+fn rate(
+    tiles: usize,
+    per_step: usize,
+    group: bool,
+    by_hand: bool,
+) -> (PhysicsWorld, CollisionRuleSet, Rate) {
+    let mut world = PhysicsWorld::new();
+    let side = (tiles as f32).sqrt().ceil() as usize;
+    let middle = side as f32 / 2.0;
+    for i in 0..tiles {
+        let (x, z) = ((i % side) as f32 - middle, (i / side) as f32 - middle);
+        let tile =
+            world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(x, -0.25, z)));
+        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.25, 0.5), Some(tile));
+    }
+    let turret =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, 1.5, 0.0)));
+    let mut cube = ColliderBuilder::cuboid(1.5, 1.5, 1.5);
+    if by_hand {
+        cube = cube.collision_groups(apart(true));
+    }
+    world.insert_collider(cube, Some(turret));
+    let mut rules = CollisionRuleSet::default();
+    let shots = (group && !by_hand).then(|| {
+        let (guns, shots) = (rules.create_group(), rules.create_group());
+        rules.set_group(turret, Some(guns));
+        rules.set_group_rule(guns, shots, CollisionRule::NoPair);
+        shots
+    });
+    let churn = Rate {
+        turret,
+        per_step,
+        shots,
+        fired: VecDeque::new(),
+        step: 0,
+    };
+    (world, rules, churn)
+}
+
+impl Churn for Rate {
+    fn apply(&mut self, world: &mut PhysicsWorld, mut rules: Option<&mut CollisionRuleSet>) {
+        if self.fired.len() == 20 {
+            for ball in self.fired.pop_front().expect("a volley") {
+                world.remove_body(ball);
+            }
+        }
+        self.step += 1;
+        let from = world.bodies[self.turret].translation();
+        let mut volley = Vec::with_capacity(self.per_step);
+        for i in 0..self.per_step {
+            // A 6 x 6 x 6 lattice inside the turret, 0.5 m apart, turned a
+            // little every step; each ball flies out from the middle.
+            let slot = (i + self.step as usize * 7) % 216;
+            let at = Vector::new(
+                (slot % 6) as f32 - 2.5,
+                ((slot / 6) % 6) as f32 - 2.5,
+                (slot / 36) as f32 - 2.5,
+            ) * 0.5;
+            let aim = (at + Vector::new(0.0, 1.0, 0.0)).normalize() * 15.0;
+            let ball = world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .translation(from + at)
+                    .linvel(aim),
+            );
+            let mut collider = ColliderBuilder::ball(0.1);
+            match rules.as_deref_mut() {
+                Some(rules) => match self.shots {
+                    Some(shots) => rules.set_group(ball, Some(shots)),
+                    None => rules.set_specific(ball, self.turret, CollisionRule::NoPair),
+                },
+                None => collider = collider.collision_groups(apart(false)),
+            }
+            world.insert_collider(collider, Some(ball));
+            volley.push(ball);
+        }
+        self.fired.push_back(volley);
+    }
+}
+
+/// A world that changes every step (`docs/performance.md`, "Worlds that
+/// change").
+#[derive(Clone, Copy)]
+enum Changing {
+    Shooters,
+    Stream {
+        specific: bool,
+    },
+    Pickups,
+    /// `per_step` balls in and as many out every step over a level of
+    /// `tiles` fixed tiles; `group`: the balls ignore the turret through
+    /// groups, else through specific entries.
+    Rate {
+        tiles: usize,
+        per_step: usize,
+        group: bool,
+    },
+}
+
+impl Changing {
+    /// The world, its rules and its churn: `by_hand` for the plain twin,
+    /// whose physics is made alike by hand-written Rapier settings.
+    fn make(self, by_hand: bool) -> (PhysicsWorld, CollisionRuleSet, Box<dyn Churn>) {
+        match self {
+            Changing::Shooters => {
+                let (world, churn) = shooters(by_hand);
+                (world, CollisionRuleSet::default(), Box::new(churn))
+            }
+            Changing::Stream { specific } => {
+                let (world, rules, churn) = stream(specific);
+                (world, rules, Box::new(churn))
+            }
+            Changing::Pickups => {
+                let (world, rules, churn) = pickups(by_hand);
+                (world, rules, Box::new(churn))
+            }
+            Changing::Rate {
+                tiles,
+                per_step,
+                group,
+            } => {
+                let (world, rules, churn) = rate(tiles, per_step, group, by_hand);
+                (world, rules, Box::new(churn))
+            }
+        }
+    }
+}
+
 /// The twins of a world that changes every step, warmed up for 120 steps
-/// (the balls and chunks at their full count).
-fn churn_twins(scene: &str, control: bool) -> Twins {
-    let (plain, world, rules, churn): (_, _, _, [Box<dyn Churn>; 2]) = match scene {
-        "shooters" => {
-            let (plain, plain_churn) = shooters(true);
-            let (world, churn) = shooters(control);
-            let churn: [Box<dyn Churn>; 2] = [Box::new(plain_churn), Box::new(churn)];
-            (plain, world, CollisionRuleSet::default(), churn)
-        }
-        _ => {
-            let specific = scene == "stream";
-            let (plain, _, plain_churn) = stream(specific);
-            let (world, rules, churn) = stream(specific);
-            let churn: [Box<dyn Churn>; 2] = [Box::new(plain_churn), Box::new(churn)];
-            let rules = if control {
-                CollisionRuleSet::default()
-            } else {
-                rules
-            };
-            (plain, world, rules, churn)
-        }
+/// (the balls and chunks at their full count). In the control both twins
+/// are the plain world.
+fn churn_twins(scene: Changing, control: bool) -> Twins {
+    let (plain, _, plain_churn) = scene.make(true);
+    let (world, rules, churn) = scene.make(control);
+    let rules = if control {
+        CollisionRuleSet::default()
+    } else {
+        rules
     };
     let mut twins = Twins {
         plain,
         world,
         hooks: RuleHooks::new(rules),
         control,
-        churn: Some(churn),
+        churn: Some([plain_churn, churn]),
     };
     twins.plan_alike();
     twins.time(60, true);
@@ -435,8 +651,9 @@ impl PairedRuns for Twins {
         for _ in 0..5 {
             let (mut plain, mut rules, mut pairs) = (Duration::ZERO, Duration::ZERO, 0u32);
             while pairs < 50 || plain + rules < Duration::from_millis(300) {
-                plain += self.time(1, false);
-                rules += self.time(1, true);
+                let pair = self.time_pair(pairs % 2 == 1);
+                plain += pair.plain;
+                rules += pair.rules;
                 pairs += 1;
             }
             runs.push((
@@ -523,24 +740,63 @@ fn worlds(c: &mut Criterion) {
     group.finish();
 }
 
-/// The worlds that change every step: a name, the objects alive, and the
-/// scene (`docs/performance.md`, "Worlds that change").
-const CHURN: [(&str, usize, &str); 5] = [
-    ("churn/control", 600, "shooters"),
-    ("churn/shooters", 600, "shooters"),
-    ("churn/stream-control", 500, "stream-groups"),
-    ("churn/stream-groups", 500, "stream-groups"),
-    ("churn/stream", 500, "stream"),
-];
+/// The worlds that change every step: a name, a size (the objects alive,
+/// or the level's tiles for `rate`), the scene, and whether it is a
+/// control (`docs/performance.md`, "Worlds that change").
+fn changing() -> Vec<(String, usize, Changing, bool)> {
+    let mut all = vec![
+        ("churn/control".into(), 600, Changing::Shooters, true),
+        ("churn/shooters".into(), 600, Changing::Shooters, false),
+        (
+            "churn/stream-control".into(),
+            500,
+            Changing::Stream { specific: false },
+            true,
+        ),
+        (
+            "churn/stream-groups".into(),
+            500,
+            Changing::Stream { specific: false },
+            false,
+        ),
+        (
+            "churn/stream".into(),
+            500,
+            Changing::Stream { specific: true },
+            false,
+        ),
+        ("churn/pickups-control".into(), 106, Changing::Pickups, true),
+        ("churn/pickups".into(), 106, Changing::Pickups, false),
+    ];
+    for tiles in RATE_SIZES {
+        let scene = |per_step, group| Changing::Rate {
+            tiles,
+            per_step,
+            group,
+        };
+        all.push(("rate/control-50".into(), tiles, scene(50, false), true));
+        for per_step in RATES {
+            for (kind, group) in [("specific", false), ("group", true)] {
+                let name = format!("rate/{kind}-{per_step}");
+                all.push((name, tiles, scene(per_step, group), false));
+            }
+        }
+    }
+    all
+}
+
+/// The chart of extra time against change: balls in (and as many out) per
+/// step, and the two level sizes they are fired over.
+const RATES: [usize; 5] = [0, 5, 20, 50, 200];
+const RATE_SIZES: [usize; 2] = [1_000, 8_000];
 
 fn paired() -> Result<(), Box<dyn std::error::Error>> {
     println!("paired runs (rules / plain: median [min, max] of 5; us per step in the median run):");
     let mut csv = String::from("scene,size,plain_us,rules_us,ratio_median,ratio_min,ratio_max\n");
     let mut rows = Vec::new();
-    let churn = CHURN.iter().map(|&(name, n, scene)| {
-        let control = name.ends_with("control");
-        (name.to_owned(), n, None, Some((scene, control)))
-    });
+    let churn = changing()
+        .into_iter()
+        .map(|(name, n, scene, control)| (name, n, None, Some((scene, control))));
     let idle = variants()
         .into_iter()
         .map(|(name, n, make)| (name, n, Some(make), None));
@@ -586,9 +842,15 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
     }
     if let Ok(out) = std::env::var("WORLDS_OUT") {
         let dir = std::path::Path::new(&out);
-        std::fs::write(dir.join("upkeep.csv"), &csv)?;
-        chart(&dir.join("upkeep.svg"), &rows)?;
-        println!("wrote upkeep.csv and upkeep.svg in {out}");
+        if rows.iter().any(|(name, _, _)| name.starts_with("level/")) {
+            std::fs::write(dir.join("upkeep.csv"), &csv)?;
+            chart(&dir.join("upkeep.svg"), &rows)?;
+            println!("wrote upkeep.csv and upkeep.svg in {out}");
+        }
+        if rows.iter().any(|(name, _, _)| name.starts_with("rate/")) {
+            rate_chart(dir, &rows)?;
+            println!("wrote churn_rate.csv and churn_rate.svg in {out}");
+        }
     }
     Ok(())
 }
@@ -635,6 +897,74 @@ fn chart(
             continue;
         }
         chart::line(&mut chart, &points, label, color)?;
+    }
+    chart::finish(chart, &root)
+}
+
+/// Extra time per step against the balls fired (and removed) per step, over
+/// the two level sizes, for both ways of saying the rule: linear in the
+/// changes, flat in the level.
+fn rate_chart(
+    dir: &std::path::Path,
+    rows: &[(String, usize, Paired)],
+) -> Result<(), Box<dyn std::error::Error>> {
+    let mut csv = String::from(
+        "tiles,rule,per_step,plain_us,rules_us,extra_us,ratio_median,ratio_min,ratio_max\n",
+    );
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for (name, n, p) in rows {
+        let Some(rest) = name.strip_prefix("rate/") else {
+            continue;
+        };
+        let Some((kind, per_step)) = rest.rsplit_once('-') else {
+            continue;
+        };
+        let extra = (p.rules - p.plain) * 1e6;
+        writeln!(
+            csv,
+            "{n},{kind},{per_step},{:.2},{:.2},{extra:.2},{:.4},{:.4},{:.4}",
+            p.plain * 1e6,
+            p.rules * 1e6,
+            p.ratios[2],
+            p.ratios[0],
+            p.ratios[4]
+        )?;
+        if kind == "control" {
+            continue;
+        }
+        let label = format!("{kind} rules, {n} tiles");
+        let point = (per_step.parse::<f64>()?, extra);
+        match series.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, points)) => points.push(point),
+            None => series.push((label, vec![point])),
+        }
+    }
+    std::fs::write(dir.join("churn_rate.csv"), &csv)?;
+    let top = series
+        .iter()
+        .flat_map(|(_, points)| points.iter().map(|p| p.1))
+        .fold(10.0f64, f64::max)
+        * 1.15;
+    let path = dir.join("churn_rate.svg");
+    let root = SVGBackend::new(&path, (760, 460)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "Extra time per step against objects changed per step",
+            ("sans-serif", 18),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0f64..210f64, (-0.1 * top)..top)?;
+    chart
+        .configure_mesh()
+        .x_desc("balls fired per step (as many removed)")
+        .y_desc("RuleHooks - plain Rapier (us per step)")
+        .draw()?;
+    let colors = [BLUE, RED, GREEN, MAGENTA];
+    for ((label, points), color) in series.iter().zip(colors) {
+        chart::line(&mut chart, points, label, color)?;
     }
     chart::finish(chart, &root)
 }

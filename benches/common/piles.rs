@@ -190,9 +190,10 @@ fn paired() {
             let mut ratios: Vec<f64> = (0..3)
                 .map(|_| {
                     let (mut plain, mut rules) = (Duration::ZERO, Duration::ZERO);
-                    for _ in 0..100 {
-                        plain += twins.time(1, false);
-                        rules += twins.time(1, true);
+                    for i in 0..100 {
+                        let pair = twins.time_pair(i % 2 == 1);
+                        plain += pair.plain;
+                        rules += pair.rules;
                     }
                     rules.as_secs_f64() / plain.as_secs_f64()
                 })

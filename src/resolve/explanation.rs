@@ -64,8 +64,8 @@ impl Explanation {
     /// Whether this is a `NoPair` given by the `(DEFAULT_KINEMATIC,
     /// DEFAULT_KINEMATIC)` table entry: the rules' word for Rapier's default
     /// collision types, which gives way where those types do not apply (a
-    /// project's wider types, scene queries; `docs/semantics.md`, section
-    /// 6). Both chains are then in `DEFAULT_KINEMATIC` from the deciding step
+    /// project's wider types, scene queries; `docs/semantics.md`, "The
+    /// project's own settings"). Both chains are then in `DEFAULT_KINEMATIC` from the deciding step
     /// up, so no later step of the group stage decides either: the pair
     /// gets the default rule.
     pub(crate) fn by_kinematic_entry(&self) -> bool {

@@ -527,13 +527,13 @@ impl Run {
                 .map_or(RigidBodyType::Fixed, |b| b.body_type())
         };
         let (ka, kb) = (kind(a), kind(b));
+        // The groups that met in the table: a node up a chain counts as the
+        // colliding body's default group (`semantics.md`, "Terms"), which
+        // its own `effective_group` (its own body's) need not be.
         let kinematic = CollisionGroup::DEFAULT_KINEMATIC;
         let by_entry = why.stage == Stage::Group
             && why.rule == CollisionRule::NoPair
-            && why.nodes.is_some_and(|(x, y)| {
-                rules.effective_group(bodies, colliders, x) == kinematic
-                    && rules.effective_group(bodies, colliders, y) == kinematic
-            });
+            && why.groups == Some((kinematic, kinematic));
         let typed = self.project_of(a).types.test(ka, kb) || self.project_of(b).types.test(ka, kb);
         if by_entry && !ka.is_dynamic() && !kb.is_dynamic() && typed {
             match rules.default_rule() {

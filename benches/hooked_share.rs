@@ -162,17 +162,12 @@ fn chart(path: &std::path::Path, lines: &[Line]) -> Result<(), Box<dyn std::erro
         .flat_map(|(_, points)| points.iter().map(|p| p.1[2]))
         .fold(1.0f64, f64::max)
         * 1.1;
-    let root = SVGBackend::new(path, (760, 460)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Step time with RuleHooks / plain Rapier, by share of hooked colliders",
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0f64..100f64, (0.9f64..top).log_scale())?;
+    let root = chart::canvas(path, (760, 460))?;
+    let mut chart = chart::builder(
+        &root,
+        "Step time with RuleHooks / plain Rapier, by share of hooked colliders",
+    )
+    .build_cartesian_2d(0f64..100f64, (0.9f64..top).log_scale())?;
     chart
         .configure_mesh()
         .x_desc("hooked colliders (% of the pile's boxes)")

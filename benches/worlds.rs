@@ -333,13 +333,19 @@ fn stream(specific: bool) -> (PhysicsWorld, CollisionRuleSet, Stream) {
     (world, rules, stream)
 }
 
+/// Removes the oldest batch of bodies (a chunk, a volley) once `alive`
+/// batches are in the world, to make room for this step's.
+fn retire(world: &mut PhysicsWorld, batches: &mut VecDeque<Vec<RigidBodyHandle>>, alive: usize) {
+    if batches.len() == alive {
+        for body in batches.pop_front().into_iter().flatten() {
+            world.remove_body(body);
+        }
+    }
+}
+
 impl Churn for Stream {
     fn apply(&mut self, world: &mut PhysicsWorld, mut rules: Option<&mut CollisionRuleSet>) {
-        if self.chunks.len() == 10 {
-            for body in self.chunks.pop_front().expect("a chunk") {
-                world.remove_body(body);
-            }
-        }
+        retire(world, &mut self.chunks, 10);
         let slot = (self.step % 10) as f32 * 12.0;
         self.step += 1;
         let mut chunk = Vec::with_capacity(50);
@@ -510,11 +516,7 @@ fn rate(
 
 impl Churn for Rate {
     fn apply(&mut self, world: &mut PhysicsWorld, mut rules: Option<&mut CollisionRuleSet>) {
-        if self.fired.len() == 20 {
-            for ball in self.fired.pop_front().expect("a volley") {
-                world.remove_body(ball);
-            }
-        }
+        retire(world, &mut self.fired, 20);
         self.step += 1;
         let from = world.bodies[self.turret].translation();
         let mut volley = Vec::with_capacity(self.per_step);
@@ -861,20 +863,15 @@ fn chart(
     path: &std::path::Path,
     rows: &[(String, usize, Paired)],
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let root = SVGBackend::new(path, (760, 460)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Step time against world size: plain Rapier and RuleHooks",
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(
-            (500f64..100_000f64).log_scale(),
-            (0.3f64..3_000f64).log_scale(),
-        )?;
+    let root = chart::canvas(path, (760, 460))?;
+    let mut chart = chart::builder(
+        &root,
+        "Step time against world size: plain Rapier and RuleHooks",
+    )
+    .build_cartesian_2d(
+        (500f64..100_000f64).log_scale(),
+        (0.3f64..3_000f64).log_scale(),
+    )?;
     chart
         .configure_mesh()
         .x_desc("world size (level tiles, field boxes)")
@@ -946,17 +943,12 @@ fn rate_chart(
         .fold(10.0f64, f64::max)
         * 1.15;
     let path = dir.join("churn_rate.svg");
-    let root = SVGBackend::new(&path, (760, 460)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Extra time per step against objects changed per step",
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0f64..210f64, (-0.1 * top)..top)?;
+    let root = chart::canvas(&path, (760, 460))?;
+    let mut chart = chart::builder(
+        &root,
+        "Extra time per step against objects changed per step",
+    )
+    .build_cartesian_2d(0f64..210f64, (-0.1 * top)..top)?;
     chart
         .configure_mesh()
         .x_desc("balls fired per step (as many removed)")

@@ -396,14 +396,9 @@ fn log_chart(
     level: Option<(f64, &str)>,
 ) -> Result<(), Failure> {
     let path = svg_path(name);
-    let root = SVGBackend::new(&path, (900, 520)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(caption, ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(x_range.log_scale(), y_range.clone())?;
+    let root = chart::canvas(&path, (900, 520))?;
+    let mut chart =
+        chart::builder(&root, caption).build_cartesian_2d(x_range.log_scale(), y_range.clone())?;
     chart
         .configure_mesh()
         .x_desc(x_label)
@@ -565,17 +560,12 @@ fn main() -> Result<(), Failure> {
     }
     {
         let path = svg_path("overlap");
-        let root = SVGBackend::new(&path, (900, 520)).into_drawing_area();
-        root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                "Switching an overlap to Normal: peak separation speed",
-                ("sans-serif", 18),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(0.0..1.0, 0.0..(cap * 1.4))?;
+        let root = chart::canvas(&path, (900, 520))?;
+        let mut chart = chart::builder(
+            &root,
+            "Switching an overlap to Normal: peak separation speed",
+        )
+        .build_cartesian_2d(0.0..1.0, 0.0..(cap * 1.4))?;
         chart
             .configure_mesh()
             .x_desc("overlap (share of the cubes' width)")

@@ -488,9 +488,12 @@ impl RuleHooks {
     /// Tells the hooks that the project changed, through Rapier, the
     /// collision groups, solver groups or collision types of colliders the
     /// rules do not reach. Changes on colliders the rules reach are noticed
-    /// by themselves, and so is any collider added or removed; the hooks do
-    /// not look at the others every step, which would cost in proportion to
-    /// the world. It matters while the plan gives groups bits shared with
+    /// by themselves, and so are colliders added or removed where the
+    /// number of colliders changed (Rapier keeps its lists of added and
+    /// removed colliders to its pipeline): after a step that removed as many
+    /// colliders as it added, some of them with layers of their own, call
+    /// this too. The hooks do not look at the others every step, which would
+    /// cost in proportion to the world. It matters while the plan gives groups bits shared with
     /// the project's settings (`stats().shares_project_bits`), and for the
     /// collision types of non-dynamic colliders paired with hooked ones: the
     /// next step reads every collider's settings, plans again and

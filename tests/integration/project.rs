@@ -676,3 +676,51 @@ fn after_project_settings_changed_the_plan_reads_every_collider_again() {
         "not told, the plan keeps bits the cube's new filter leaves out: y = {y}"
     );
 }
+
+#[test]
+fn a_step_that_removes_as_many_colliders_as_it_adds_is_seen_once_told() {
+    // As above, but the cube comes with its layer in the step a spare cube
+    // goes: the number of colliders is unchanged, so the hooks do not read
+    // the room again by themselves (`semantics.md`, "The project's own
+    // settings"); `project_settings_changed` makes the next step read it.
+    let run = |told: bool| {
+        let mut scene = Scene::new();
+        let (a, _) = scene.cube(0.0, 0.5);
+        let (b, _) = scene.cube(3.0, 0.5);
+        let (spare, _) = scene.cube(-3.0, 0.5);
+        let mut hooks = RuleHooks::default();
+        let rules = hooks.rules_mut();
+        let (g, h) = (rules.create_group(), rules.create_group());
+        rules.set_group_rule(g, h, NoPair);
+        rules.set_group(a, Some(g));
+        rules.set_group(b, Some(h));
+        hooks.step(&mut scene.world);
+        let count = scene.world.colliders.len();
+        scene.world.remove_body(spare);
+        let body = scene
+            .world
+            .insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 3.0)));
+        scene.world.insert_collider(
+            cuboid(0.5, 0.5, 0.5).collision_groups(layer(PLAYER, PLAYER)),
+            Some(body),
+        );
+        assert_eq!(scene.world.colliders.len(), count, "as many in as out");
+        if told {
+            hooks.project_settings_changed();
+        }
+        for _ in 0..60 {
+            hooks.step(&mut scene.world);
+        }
+        scene.y(body)
+    };
+    let y = run(true);
+    assert!(
+        (1.3..1.7).contains(&y),
+        "told: the cube rests on the box: y = {y}"
+    );
+    let y = run(false);
+    assert!(
+        y < 1.0,
+        "not told, the plan keeps bits the new cube's filter leaves out: y = {y}"
+    );
+}

@@ -636,32 +636,53 @@ fn layers_moved_into_the_rules_step_bit_for_bit_as_the_layers() {
     assert_same_poses(&plain, &world, &bodies);
 }
 
+/// Two boxes on the floor in groups that never pair, which the plan gives
+/// bits, and one more cube made by `before` ahead of the first step; then
+/// `edit` changes the world through Rapier and names the cube to watch, the
+/// project says so (`told`) or not, and the world steps 60 times. Returns
+/// whether the plan shared its bits with the project, and where the cube
+/// came to rest.
+fn boxes_apart(
+    told: bool,
+    before: impl Fn(&mut Scene) -> (RigidBodyHandle, ColliderHandle),
+    edit: impl Fn(&mut Scene, (RigidBodyHandle, ColliderHandle)) -> RigidBodyHandle,
+) -> (bool, f32) {
+    let mut scene = Scene::new();
+    let (a, _) = scene.cube(0.0, 0.5);
+    let (b, _) = scene.cube(3.0, 0.5);
+    let extra = before(&mut scene);
+    let mut hooks = RuleHooks::default();
+    let rules = hooks.rules_mut();
+    let (g, h) = (rules.create_group(), rules.create_group());
+    rules.set_group_rule(g, h, NoPair);
+    rules.set_group(a, Some(g));
+    rules.set_group(b, Some(h));
+    hooks.step(&mut scene.world);
+    let shares = hooks.stats().shares_project_bits;
+    let watched = edit(&mut scene, extra);
+    if told {
+        hooks.project_settings_changed();
+    }
+    for _ in 0..60 {
+        hooks.step(&mut scene.world);
+    }
+    (shares, scene.y(watched))
+}
+
 #[test]
 fn after_project_settings_changed_the_plan_reads_every_collider_again() {
     // A cube no rule reaches drops onto a box whose group has a bit; while
     // it falls, the project narrows the cube's filter to the player layer,
     // which leaves the group's bit out.
     let run = |told: bool| {
-        let mut scene = Scene::new();
-        let (a, _) = scene.cube(0.0, 0.5);
-        let (b, _) = scene.cube(3.0, 0.5);
-        let (cube_body, cube) = scene.cube(0.0, 3.0);
-        let mut hooks = RuleHooks::default();
-        let rules = hooks.rules_mut();
-        let (g, h) = (rules.create_group(), rules.create_group());
-        rules.set_group_rule(g, h, NoPair);
-        rules.set_group(a, Some(g));
-        rules.set_group(b, Some(h));
-        hooks.step(&mut scene.world);
-        let shares = hooks.stats().shares_project_bits;
-        scene.world.colliders[cube].set_collision_groups(layer(PLAYER, PLAYER));
-        if told {
-            hooks.project_settings_changed();
-        }
-        for _ in 0..60 {
-            hooks.step(&mut scene.world);
-        }
-        (shares, scene.y(cube_body))
+        boxes_apart(
+            told,
+            |scene| scene.cube(0.0, 3.0),
+            |scene, (cube_body, cube)| {
+                scene.world.colliders[cube].set_collision_groups(layer(PLAYER, PLAYER));
+                cube_body
+            },
+        )
     };
     let (shares, y) = run(true);
     assert!(shares, "the group rule's bits are shared with the project");
@@ -684,34 +705,24 @@ fn a_step_that_removes_as_many_colliders_as_it_adds_is_seen_once_told() {
     // the room again by themselves (`semantics.md`, "The project's own
     // settings"); `project_settings_changed` makes the next step read it.
     let run = |told: bool| {
-        let mut scene = Scene::new();
-        let (a, _) = scene.cube(0.0, 0.5);
-        let (b, _) = scene.cube(3.0, 0.5);
-        let (spare, _) = scene.cube(-3.0, 0.5);
-        let mut hooks = RuleHooks::default();
-        let rules = hooks.rules_mut();
-        let (g, h) = (rules.create_group(), rules.create_group());
-        rules.set_group_rule(g, h, NoPair);
-        rules.set_group(a, Some(g));
-        rules.set_group(b, Some(h));
-        hooks.step(&mut scene.world);
-        let count = scene.world.colliders.len();
-        scene.world.remove_body(spare);
-        let body = scene
-            .world
-            .insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 3.0)));
-        scene.world.insert_collider(
-            cuboid(0.5, 0.5, 0.5).collision_groups(layer(PLAYER, PLAYER)),
-            Some(body),
+        let (_, y) = boxes_apart(
+            told,
+            |scene| scene.cube(-3.0, 0.5),
+            |scene, (spare, _)| {
+                let count = scene.world.colliders.len();
+                scene.world.remove_body(spare);
+                let body = scene
+                    .world
+                    .insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 3.0)));
+                scene.world.insert_collider(
+                    cuboid(0.5, 0.5, 0.5).collision_groups(layer(PLAYER, PLAYER)),
+                    Some(body),
+                );
+                assert_eq!(scene.world.colliders.len(), count, "as many in as out");
+                body
+            },
         );
-        assert_eq!(scene.world.colliders.len(), count, "as many in as out");
-        if told {
-            hooks.project_settings_changed();
-        }
-        for _ in 0..60 {
-            hooks.step(&mut scene.world);
-        }
-        scene.y(body)
+        y
     };
     let y = run(true);
     assert!(

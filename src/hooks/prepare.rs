@@ -105,7 +105,7 @@ impl RuleHooks {
         if self.planned.exhaustive {
             self.queued.replan.get_or_insert(PlanCause::HookSettings);
         }
-        if self.idle() {
+        if self.idle(colliders) {
             return;
         }
         if full != self.planned.plan.full && (full.is_some() || self.planned.plan.full.is_some()) {
@@ -139,6 +139,7 @@ impl RuleHooks {
         self.stats = StepStats {
             hooked_colliders: self.planned.hooked,
             tracked_pairs: self.pairs.len(),
+            shares_project_bits: self.planned.plan.room.is_some(),
             ..StepStats::default()
         };
     }
@@ -354,10 +355,16 @@ impl RuleHooks {
     }
 
     /// Whether the rules reach nothing and nothing waits: the common case
-    /// of a world without rules, which costs a few branches per step.
+    /// of a world without rules, which costs a few branches per step. A
+    /// plan that took bits from the project's room waits on colliders
+    /// coming or going, which may change the room (see `check_room`).
     #[inline]
-    pub(super) fn idle(&self) -> bool {
-        self.planned.roster.collider_count() == 0
+    pub(super) fn idle(&self, colliders: &ColliderSet) -> bool {
+        self.planned
+            .plan
+            .room
+            .is_none_or(|(_, count)| count == colliders.len())
+            && self.planned.roster.collider_count() == 0
             && self.planned.roster.body_count() == 0
             && self.pairs.is_empty()
             && self.planned.plan.full.is_none()

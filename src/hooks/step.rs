@@ -34,7 +34,7 @@ impl RuleHooks {
 
     /// [`step`](Self::step), with Rapier's events sent to `events`.
     pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
-        if self.idle() {
+        if self.idle(&world.colliders) {
             // The same call as `world.step_with_events`, so that a world the
             // rules do not reach steps as plainly as it can
             // (`docs/performance.md`, "What the remaining cost is").
@@ -107,7 +107,7 @@ impl RuleHooks {
         ccd_solver: &mut CCDSolver,
         events: &dyn EventHandler,
     ) {
-        let idle = self.idle();
+        let idle = self.idle(colliders);
         if idle {
             self.count_idle_step();
         } else {
@@ -150,7 +150,10 @@ impl RuleHooks {
     #[inline]
     fn count_idle_step(&mut self) {
         self.boundary.step += 1;
-        self.stats = StepStats::default();
+        self.stats = StepStats {
+            shares_project_bits: self.planned.plan.room.is_some(),
+            ..StepStats::default()
+        };
     }
 
     /// Settles `ManifoldUpdate::Never` settings made since the last step

@@ -106,6 +106,9 @@ pub struct Run {
     /// For colliders the project changed since the last step: their
     /// settings then (what the crate wrote) and the project's then.
     since_step: HashMap<ColliderHandle, (Project, Project)>,
+    /// The number of colliders, and of removed ones, when this run last
+    /// stepped.
+    at_last_step: (usize, usize),
 }
 
 /// A collider's settings as its project set them.
@@ -154,6 +157,7 @@ impl Run {
             removed: Vec::new(),
             project: HashMap::new(),
             since_step: HashMap::new(),
+            at_last_step: (0, 0),
         };
         for &(x, y, kind) in cubes {
             run.add_cube(x, y, kind);
@@ -322,7 +326,7 @@ impl Run {
                 }
             }
             Edit::Bracket(n) => {
-                self.since_step.clear();
+                self.before_step();
                 let (hooks, w) = (&mut self.hooks, &mut self.world);
                 hooks.prepare(&w.bodies, &mut w.colliders);
                 hooks.freeze_manifolds(&w.narrow_phase);
@@ -382,7 +386,7 @@ impl Run {
     }
 
     pub fn step(&mut self) {
-        self.since_step.clear();
+        self.before_step();
         self.hooks.step(&mut self.world);
         self.check();
     }
@@ -488,6 +492,22 @@ impl Run {
             project.types = now.types;
         }
         self.project.insert(handle, project);
+    }
+
+    /// Starts a step. A step that removed as many colliders as it added,
+    /// some with layers of their own, leaves the count of colliders as it
+    /// was: the project says so (`docs/semantics.md`, "Where the two meet
+    /// in Rapier's 32 bits").
+    fn before_step(&mut self) {
+        self.since_step.clear();
+        let (count, removed) = self.at_last_step;
+        let layered_gone = self.removed[removed.min(self.removed.len())..]
+            .iter()
+            .any(|c| self.project.contains_key(c));
+        if layered_gone && self.world.colliders.len() == count {
+            self.settings_changed();
+        }
+        self.at_last_step = (self.world.colliders.len(), self.removed.len());
     }
 
     /// What a project is told to do after changing settings through

@@ -304,6 +304,19 @@ fn sensor_pair(context: &PairFilterContext<'_>) -> bool {
     sensor(context.collider1) || sensor(context.collider2)
 }
 
+/// Whether one collider of the pair is a soft body's surface and the other
+/// is not.
+#[inline]
+fn soft_rigid_pair(context: &PairFilterContext<'_>) -> bool {
+    let soft = |c: ColliderHandle| {
+        context
+            .colliders
+            .get(c)
+            .is_some_and(|c| c.deformable_mesh_ref().is_some())
+    };
+    soft(context.collider1) != soft(context.collider2)
+}
+
 /// Whether the body of each collider of `key` is dynamic, in key order,
 /// read from the hook's context.
 #[inline]
@@ -450,7 +463,10 @@ impl PhysicsHooks for RuleHooks {
                 manifold,
                 again,
             } = self.lookup(context);
-            let computes = computes(rule, manifold);
+            // Rapier's soft-body solver answers every soft-rigid pair with
+            // contacts: one without response has none (`docs/semantics.md`,
+            // "Soft bodies").
+            let computes = computes(rule, manifold) && (rule.responds() || !soft_rigid_pair(context));
             // The CCD's sweep takes a sensor for a pass-through hit, which
             // clamps nothing and gives the intersection events: a sensor
             // pair stays in the sweep.
@@ -490,6 +506,21 @@ impl PhysicsHooks for RuleHooks {
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext<'_>) {
         self.replay_frozen(context);
         let (a, b) = (context.collider1, context.collider2);
+        // Two soft surfaces without response keep their pair and its
+        // events, and their contacts are disabled (`docs/semantics.md`,
+        // "Soft bodies").
+        if context.soft_mut().is_some() && self.decides(a, b) {
+            let key = PairKey::new(a, b);
+            let responds = match self.pairs.get(key) {
+                Some(state) => state.rule().responds(),
+                None => self.pending().get(&key).is_none_or(|s| s.rule().responds()),
+            };
+            if !responds {
+                if let Some(soft) = context.soft_mut() {
+                    soft.disable_all();
+                }
+            }
+        }
         if let Some(user) =
             self.user_for(context.colliders, a, b, ActiveHooks::MODIFY_SOLVER_CONTACTS)
         {

@@ -5,7 +5,8 @@
 //! through the [`roster`] of what the rules reach; the plan written into
 //! the colliders by [`writer`]; live pairs recalculated by [`recalculate`];
 //! the [`witness`] of a step taken without the hooks) and after ([`sweep`]:
-//! the pairs Rapier made and ended). During the step Rapier asks it about
+//! the pairs Rapier made and ended; [`soft_bodies`]: what a soft body is to
+//! the rules, and the pieces of cuts and tears). During the step Rapier asks it about
 //! the pairs of hooked colliders ([`answer`]), which it answers from the
 //! table of live pairs ([`pair_state`]). [`live`] is the live-pair API,
 //! answered on demand from Rapier's graph; [`stats`] says what the last
@@ -21,6 +22,7 @@ mod pair_state;
 mod prepare;
 mod recalculate;
 mod roster;
+mod soft_bodies;
 mod stats;
 mod step;
 mod sweep;
@@ -144,6 +146,8 @@ pub struct RuleHooks {
     planned: Planned,
     /// What the last step did.
     stats: StepStats,
+    /// What the hooks follow of the world's soft bodies.
+    soft: soft_bodies::SoftBodies,
 }
 
 /// What decides each pair: the rules, the policy, the code a project
@@ -285,6 +289,7 @@ impl RuleHooks {
                 modifying: HashSet::new(),
             },
             stats: StepStats::default(),
+            soft: soft_bodies::SoftBodies::default(),
         }
     }
 

@@ -61,6 +61,10 @@ pub enum PlanCause {
     /// whether Rapier's groups say that depends on every collider's
     /// personal rules; or a pinned pair.
     NewClass,
+    /// The world came to hold soft bodies, or stopped holding any: their
+    /// solver reads no solver groups, so `NoResponse` moves between Rapier's
+    /// groups and the hook (`docs/semantics.md`, "Soft bodies").
+    SoftBodies,
 }
 
 /// What the last step of a [`RuleHooks`](super::RuleHooks) did and cost:

@@ -37,6 +37,7 @@ impl RuleHooks {
             own: &own,
             pairs_of: &pairs_of,
             decided: &self.planned.plan.decisions,
+            soft_bodies: self.soft.present,
         };
         let plan = planner::plan(&request);
         // Never pairs: the hooked side also modifies the pair's contacts.
@@ -107,6 +108,7 @@ impl RuleHooks {
             own: &own,
             pairs_of: &pairs_of,
             decided: &decided,
+            soft_bodies: self.soft.present,
         };
         let Some(planned) = planner::replan_some(&mut self.planned.plan, &request, &handles) else {
             return self.apply_plan(bodies, colliders, graph, PlanCause::NewClass);
@@ -150,7 +152,11 @@ impl RuleHooks {
         let before = self.planned.plan.entry(handle, dynamic);
         let now = Settings::of(current);
         let own = self.own_settings(handle, current);
-        let target = entry.combined(own, self.planned.modifying.contains(&handle));
+        // A hooked soft surface also sees its soft-soft contacts, which a
+        // `NoResponse` pair disables (`docs/semantics.md`, "Soft bodies").
+        let modifying = self.planned.modifying.contains(&handle)
+            || (entry.hooked() && current.deformable_mesh_ref().is_some());
+        let target = entry.combined(own, modifying);
         // The project changed a setting through Rapier: its pairs may have
         // ended (Rapier's own filters stop them), looked up after the step.
         if self.planned.written.get(handle).is_some_and(|w| w.own != own) {

@@ -13,7 +13,9 @@
 //! behind ([`removal`]). Each edit is logged ([`changes`]) so that the hooks
 //! recalculate just what it can affect. [`integrity`] checks a rule set
 //! against its world, [`snapshot`] saves and loads one, and [`joints`] and
-//! [`layers`] build rules from what a Rapier project already has.
+//! [`layers`] build rules from what a Rapier project already has, and
+//! [`pieces`] gives the pieces of a cut or torn soft body the rules of the
+//! body they came from.
 //!
 //! The next stage, [`resolve`](super::resolve), reads the model and never
 //! edits it.
@@ -30,6 +32,7 @@ pub(crate) mod layers;
 pub(crate) mod node;
 pub(crate) mod node_rules;
 pub(crate) mod parents;
+pub(crate) mod pieces;
 pub(crate) mod records;
 pub(crate) mod removal;
 pub(crate) mod rule;

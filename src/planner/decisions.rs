@@ -333,7 +333,9 @@ impl Decisions {
             self.list((x, y));
             let kind = match xy.most_restrictive(yx) {
                 CollisionRule::NoPair => Some(0),
-                CollisionRule::NoResponse => Some(1),
+                CollisionRule::NoResponse if request.native_rule(CollisionRule::NoResponse) => {
+                    Some(1)
+                }
                 _ => None,
             };
             // A hooked side is exact whatever comes under it: kept without

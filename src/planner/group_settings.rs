@@ -6,6 +6,7 @@ use super::super::rapier::prelude::*;
 
 use super::class::Class;
 use super::collider_plan::ColliderPlan;
+use super::plan::Request;
 use super::room::Room;
 use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet};
 
@@ -51,10 +52,11 @@ impl GroupSettings {
     /// counted, only the groups with members are (`docs/architecture.md`,
     /// "The planner").
     pub(super) fn new(
-        rules: &CollisionRuleSet,
+        request: &Request<'_>,
         classes: impl Iterator<Item = Class>,
         room: Room,
     ) -> GroupSettings {
+        let rules = request.rules;
         let mut members: HashMap<CollisionGroup, (bool, bool)> = HashMap::new();
         let defaults = [Class::unreached(true), Class::unreached(false)];
         for class in classes.chain(defaults) {
@@ -80,21 +82,22 @@ impl GroupSettings {
                     }
                 }
             }
-            let settings = GroupSettings::of_members(rules, awaiting, room);
+            let settings = GroupSettings::of_members(request, awaiting, room);
             if settings.bits.len() == settings.involved.len() {
                 return settings;
             }
         }
-        GroupSettings::of_members(rules, members, room)
+        GroupSettings::of_members(request, members, room)
     }
 
     /// The settings of the groups in `members`, with whether each has
     /// dynamic and non-dynamic members.
     fn of_members(
-        rules: &CollisionRuleSet,
+        request: &Request<'_>,
         members: HashMap<CollisionGroup, (bool, bool)>,
         room: Room,
     ) -> GroupSettings {
+        let rules = request.rules;
         let mut used: Vec<CollisionGroup> = members.keys().copied().collect();
         used.sort_unstable();
         let group_rule = |a: CollisionGroup, b: CollisionGroup| {
@@ -111,10 +114,11 @@ impl GroupSettings {
             .map(|(a, b)| (a, b, group_rule(a, b)))
             .collect();
         // A group with a NoContacts relation needs the hook: the pair must
-        // exist without contacts, which no group test can say.
+        // exist without contacts, which no group test can say; so does a
+        // NoResponse that Rapier's groups cannot say (soft bodies).
         let needs_hook: HashSet<CollisionGroup> = relations
             .iter()
-            .filter(|&&(_, _, rule)| rule == CollisionRule::NoContacts)
+            .filter(|&&(_, _, rule)| rule == CollisionRule::NoContacts || !request.native_rule(rule))
             .flat_map(|&(a, b, _)| [a, b])
             .collect();
         let has_dynamic = |g: CollisionGroup| members[&g].0;

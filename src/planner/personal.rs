@@ -109,7 +109,9 @@ pub(super) fn personal_natives(
         if class.is_some() || !dynamic {
             continue;
         }
-        let Some((rule, depth)) = personal_rule(rules, bodies, colliders, handle) else {
+        let Some((rule, depth)) = personal_rule(rules, bodies, colliders, handle)
+            .filter(|&(rule, _)| request.native_rule(rule))
+        else {
             continue;
         };
         if rule != CollisionRule::Normal {

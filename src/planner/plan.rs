@@ -136,6 +136,19 @@ pub(crate) struct Request<'a> {
     pub(crate) pairs_of: &'a dyn Fn(ColliderHandle) -> Option<usize>,
     /// The decisions of the plan before, kept (see [`Decisions`]).
     pub(crate) decided: &'a Decisions,
+    /// The world holds soft bodies, whose solver reads no solver groups: no
+    /// `NoResponse` is then left to Rapier's groups (`docs/semantics.md`,
+    /// "Soft bodies").
+    pub(crate) soft_bodies: bool,
+}
+
+impl Request<'_> {
+    /// Whether Rapier's groups can say `rule` for a pair: not a
+    /// `NoResponse` where soft bodies may be on one side.
+    #[inline]
+    pub(super) fn native_rule(&self, rule: CollisionRule) -> bool {
+        !(self.soft_bodies && rule == CollisionRule::NoResponse)
+    }
 }
 
 impl Request<'_> {
@@ -184,13 +197,13 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
         .iter()
         .filter_map(|&h| class_of(h))
         .collect();
-    let mut settings = GroupSettings::new(rules, classes.iter().filter_map(|c| c.1), Room::ALL);
+    let mut settings = GroupSettings::new(request, classes.iter().filter_map(|c| c.1), Room::ALL);
     if settings.needs_room() {
         // Group bits and collision types are shared with the project's
         // settings of every collider: look at them all.
         let room = Room::of_world(colliders, request.own);
         plan.room = Some((room, colliders.len()));
-        settings = GroupSettings::new(rules, classes.iter().filter_map(|c| c.1), room);
+        settings = GroupSettings::new(request, classes.iter().filter_map(|c| c.1), room);
     }
     // A collider no rule names may carry project types that pair
     // non-dynamic bodies, where the kinematic entry gives way to a default

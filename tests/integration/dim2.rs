@@ -37,3 +37,21 @@ pub fn cuboid(hx: f32, hy: f32, _hz: f32) -> ColliderBuilder {
 pub fn ball_joint(anchor2: Vector) -> GenericJoint {
     RevoluteJointBuilder::new().local_anchor2(anchor2).into()
 }
+
+/// A soft block of half-side `half` around `center`: triangles on a 4x4
+/// grid of particles.
+pub fn soft_block(center: Vector, half: f32) -> SoftBodyBuilder {
+    SoftBodyBuilder::grid(center, Vector::splat(half), 4, 4)
+        .cell_model(SoftBodyCellModel::Corotational)
+        .softness(SpringCoefficients::new(30.0, 1.0))
+}
+
+/// A soft bar along x, `half` long each way, to cut across.
+pub fn soft_bar(center: Vector, half: f32) -> SoftBodyBuilder {
+    SoftBodyBuilder::grid(center, Vector::new(half, 0.25), 6, 2)
+}
+
+/// A blade across the line x = `x`.
+pub fn blade_at_x(x: f32) -> [Vector; 2] {
+    [Vector::new(x, -10.0), Vector::new(x, 20.0)]
+}

@@ -42,3 +42,25 @@ pub fn cuboid(hx: f32, hy: f32, hz: f32) -> ColliderBuilder {
 pub fn ball_joint(anchor2: Vector) -> GenericJoint {
     SphericalJointBuilder::new().local_anchor2(anchor2).into()
 }
+
+/// A soft block of half-side `half` around `center`: tetrahedra on a 4x4x4
+/// grid of particles, as in Rapier's own soft-body tests.
+pub fn soft_block(center: Vector, half: f32) -> SoftBodyBuilder {
+    SoftBodyBuilder::cuboid(center, Vector::splat(half), 4, 4, 4)
+        .cell_model(SoftBodyCellModel::Corotational)
+        .softness(SpringCoefficients::new(30.0, 1.0))
+}
+
+/// A soft bar along x, `half` long each way, to cut across.
+pub fn soft_bar(center: Vector, half: f32) -> SoftBodyBuilder {
+    SoftBodyBuilder::cuboid(center, Vector::new(half, 0.25, 0.25), 6, 2, 2)
+}
+
+/// A blade across the plane x = `x`.
+pub fn blade_at_x(x: f32) -> [Vector; 3] {
+    [
+        Vector::new(x, -10.0, -10.0),
+        Vector::new(x, 20.0, -10.0),
+        Vector::new(x, -10.0, 20.0),
+    ]
+}

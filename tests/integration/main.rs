@@ -36,6 +36,8 @@ macro_rules! dimension_free_tests {
         #[allow(dead_code)]
         #[path = "scenes.rs"]
         pub mod scenes;
+        #[path = "soft.rs"]
+        mod soft;
         #[path = "vectors.rs"]
         mod vectors;
         #[path = "world.rs"]

@@ -1,0 +1,116 @@
+//! Soft bodies: what the hooks follow of Rapier's soft-body set between
+//! steps (`docs/semantics.md`, "Soft bodies").
+//!
+//! To the rules a soft body is its root body
+//! ([`SoftBody::root_body`](rapier::dynamics::SoftBody::root_body)), which
+//! holds the colliders of its surface; the proxy body of each further
+//! cluster is given the root as parent in the parent map, so that a rule of
+//! the root reaches every collider of the body. A piece split off by a cut
+//! or a tear (a soft body whose `origin` is a body the hooks know) takes
+//! the rules of the body it came from, before the step after the split.
+//!
+//! The look costs nothing while the number of soft bodies stays the same,
+//! and a pass over the soft bodies (not their particles) when it changes.
+
+use hashbrown::HashSet;
+
+use super::super::rapier::prelude::*;
+
+use super::{PlanCause, RuleHooks};
+
+/// What the hooks know of the world's soft bodies.
+#[derive(Debug, Default)]
+pub(super) struct SoftBodies {
+    /// The world holds soft bodies: no `NoResponse` is left to Rapier's
+    /// solver groups, which its soft-body solver does not read.
+    pub(super) present: bool,
+    /// How many soft bodies the set had at the last look.
+    count: usize,
+    /// The soft bodies seen so far.
+    known: HashSet<SoftBodyHandle>,
+}
+
+impl RuleHooks {
+    /// Follows the world's soft bodies: pieces of cuts and tears take the
+    /// rules of the body they came from, the proxy bodies of a soft body's
+    /// clusters get its root body as parent, and while soft bodies exist
+    /// `NoResponse` is said by the hook. [`step`](Self::step) and
+    /// [`step_pipeline`](Self::step_pipeline) call it; a project that calls
+    /// [`prepare`](Self::prepare) itself calls it before, with the world's
+    /// `soft_bodies`.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+    /// world.insert_collider(ColliderBuilder::cuboid(20.0, 0.5, 20.0), Some(ground));
+    /// let bar = SoftBodyBuilder::cuboid(Vector::new(0.0, 0.6, 0.0), Vector::new(1.0, 0.25, 0.25), 6, 2, 2);
+    /// let bar = world.insert_soft_body(bar);
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific(ground, world.soft_bodies[bar].root_body(), CollisionRule::NoPair);
+    /// hooks.step(&mut world);
+    /// // A triangle in the plane x = 0.1 that spans the bar.
+    /// let blade = [Vector::new(0.1, -10.0, -10.0), Vector::new(0.1, 20.0, -10.0), Vector::new(0.1, -10.0, 20.0)];
+    /// let cut = world.cut_soft_body(bar, &blade).expect("the blade crosses the bar");
+    /// for _ in 0..60 {
+    ///     hooks.step(&mut world);
+    /// }
+    /// for piece in cut.bodies() {
+    ///     let lowest = world.soft_bodies[piece].particle_positions().map(|p| p.y).fold(f32::MAX, f32::min);
+    ///     assert!(lowest < -1.0, "each piece falls through the ground: lowest particle at {lowest}");
+    /// }
+    /// ```
+    pub fn follow_soft_bodies(&mut self, soft_bodies: &SoftBodySet) {
+        let present = !soft_bodies.is_empty();
+        if present != self.soft.present {
+            self.soft.present = present;
+            // `NoResponse` moves between Rapier's groups and the hook.
+            if self.planned.roster.collider_count() > 0 || self.planned.plan.full.is_some() {
+                self.queued.replan.get_or_insert(PlanCause::SoftBodies);
+            }
+        }
+        if soft_bodies.len() == self.soft.count {
+            return;
+        }
+        self.soft.count = soft_bodies.len();
+        self.soft.known.retain(|&h| soft_bodies.contains(h));
+        let mut new: Vec<SoftBodyHandle> = soft_bodies
+            .iter()
+            .map(|(h, _)| h)
+            .filter(|h| !self.soft.known.contains(h))
+            .collect();
+        new.sort_unstable_by_key(|h| h.into_raw_parts());
+        // A piece torn off a piece in the same step takes its rules once its
+        // own source has them: sources first.
+        while !new.is_empty() {
+            let before = new.len();
+            new.retain(|&handle| {
+                let body = &soft_bodies[handle];
+                let source = body.origin().filter(|&o| soft_bodies.contains(o));
+                if source.is_some_and(|s| !self.soft.known.contains(&s)) {
+                    return true;
+                }
+                let rules = &mut self.decide.rules;
+                if let Some(source) = source {
+                    rules.give_piece(soft_bodies[source].root_body(), body.root_body());
+                }
+                let root = body.root_body();
+                for (_, cluster) in body.live_clusters() {
+                    let proxy = cluster.proxy();
+                    if proxy != root && rules.parent(proxy).is_none() {
+                        // The root is a new body: no cycle can go through it.
+                        let _ = rules.set_parent(proxy, root);
+                    }
+                }
+                self.soft.known.insert(handle);
+                false
+            });
+            if new.len() == before {
+                // Sources no longer in the set: the pieces keep no rules.
+                self.soft.known.extend(new.drain(..));
+            }
+        }
+    }
+}

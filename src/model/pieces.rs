@@ -1,0 +1,40 @@
+//! What a piece of a cut or torn soft body keeps of the body it came from
+//! (`docs/semantics.md`, "Soft bodies").
+
+use super::super::rapier::prelude::RigidBodyHandle;
+
+use super::super::{CollisionRule, CollisionRuleSet, Node};
+
+impl CollisionRuleSet {
+    /// Gives `piece` (the root body of a soft body split off by a cut or a
+    /// tear) the rules of `source` (the root body of the body it came from):
+    /// it shares `source`'s record (personal rule, group, its specific
+    /// entries, and later edits through either), every entry another node
+    /// holds about `source` is held about `piece` too, and `piece` gets
+    /// `source`'s parent. Returns whether anything was given.
+    pub(crate) fn give_piece(&mut self, source: RigidBodyHandle, piece: RigidBodyHandle) -> bool {
+        let (from, to) = (Node::Body(source), Node::Body(piece));
+        if self.is_removed(to) {
+            return false;
+        }
+        let mut given = false;
+        if self.record(from).is_some_and(|r| !r.is_empty()) {
+            self.share_rules(from, to);
+            given = true;
+        }
+        if self.is_named(from) {
+            let holders: Vec<(Node, CollisionRule)> = self
+                .nodes()
+                .filter_map(|n| Some((n, *self.record(n)?.specific.get(&from)?)))
+                .collect();
+            for (holder, rule) in holders {
+                self.set_specific(holder, to, rule);
+            }
+            given = true;
+        }
+        if let Some(parent) = self.parent(source) {
+            given |= self.set_parent(piece, parent).is_ok();
+        }
+        given
+    }
+}

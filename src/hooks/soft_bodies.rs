@@ -1,9 +1,8 @@
 //! Soft bodies: what the hooks follow of Rapier's soft-body set between
 //! steps (`docs/semantics.md`, "Soft bodies").
 //!
-//! To the rules a soft body is its root body
-//! ([`SoftBody::root_body`](rapier::dynamics::SoftBody::root_body)), which
-//! holds the colliders of its surface; the proxy body of each further
+//! To the rules a soft body is its root body ([`SoftBody::root_body`]),
+//! which holds the colliders of its surface; the proxy body of each further
 //! cluster is given the root as parent in the parent map, so that a rule of
 //! the root reaches every collider of the body. A piece split off by a cut
 //! or a tear (a soft body whose `origin` is a body the hooks know) takes

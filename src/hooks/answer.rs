@@ -65,7 +65,7 @@ impl RuleHooks {
         a: ColliderHandle,
         b: ColliderHandle,
     ) -> CollisionRule {
-        let why = self.decide.rules.explain(bodies, colliders, a, b);
+        let why = self.decide.rules.explain_rule(bodies, colliders, a, b);
         if why.rule != CollisionRule::NoPair || !why.by_kinematic_entry() {
             return why.rule;
         }

@@ -8,8 +8,10 @@
 //! or a tear (a soft body whose `origin` is a body the hooks know) takes
 //! the rules of the body it came from, before the step after the split.
 //!
-//! The look costs nothing while the number of soft bodies stays the same,
-//! and a pass over the soft bodies (not their particles) when it changes.
+//! The look costs nothing while the numbers of soft bodies and of rigid
+//! bodies stay the same (a cluster added to a soft body adds a proxy body),
+//! and a pass over the soft bodies and their clusters (not their particles)
+//! when one changes.
 
 use hashbrown::HashSet;
 
@@ -23,8 +25,9 @@ pub(super) struct SoftBodies {
     /// The world holds soft bodies: no `NoResponse` is left to Rapier's
     /// solver groups, which its soft-body solver does not read.
     pub(super) present: bool,
-    /// How many soft bodies the set had at the last look.
-    count: usize,
+    /// How many soft bodies, and (while there are some) rigid bodies, the
+    /// sets had at the last look.
+    counts: (usize, usize),
     /// The soft bodies seen so far.
     known: HashSet<SoftBodyHandle>,
 }
@@ -32,11 +35,12 @@ pub(super) struct SoftBodies {
 impl RuleHooks {
     /// Follows the world's soft bodies: pieces of cuts and tears take the
     /// rules of the body they came from, the proxy bodies of a soft body's
-    /// clusters get its root body as parent, and while soft bodies exist
-    /// `NoResponse` is said by the hook. [`step`](Self::step) and
-    /// [`step_pipeline`](Self::step_pipeline) call it; a project that calls
-    /// [`prepare`](Self::prepare) itself calls it before, with the world's
-    /// `soft_bodies`.
+    /// clusters get its root body as parent (unless they have one) once the
+    /// rules name the root, and
+    /// while soft bodies exist `NoResponse` is said by the hook.
+    /// [`step`](Self::step) and [`step_pipeline`](Self::step_pipeline) call
+    /// it; a project that calls [`prepare`](Self::prepare) itself calls it
+    /// before, with the world's `soft_bodies` and `bodies`.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -61,7 +65,7 @@ impl RuleHooks {
     ///     assert!(lowest < -1.0, "each piece falls through the ground: lowest particle at {lowest}");
     /// }
     /// ```
-    pub fn follow_soft_bodies(&mut self, soft_bodies: &SoftBodySet) {
+    pub fn follow_soft_bodies(&mut self, soft_bodies: &SoftBodySet, bodies: &RigidBodySet) {
         let present = !soft_bodies.is_empty();
         if present != self.soft.present {
             self.soft.present = present;
@@ -70,10 +74,13 @@ impl RuleHooks {
                 self.queued.replan.get_or_insert(PlanCause::SoftBodies);
             }
         }
-        if soft_bodies.len() == self.soft.count {
+        // A cluster added to a soft body adds its proxy to the bodies.
+        // A rule given to a soft body's root links its proxies.
+        let counts = (soft_bodies.len(), if present { bodies.len() } else { 0 });
+        if counts == self.soft.counts && !(present && self.decide.rules.has_changes()) {
             return;
         }
-        self.soft.count = soft_bodies.len();
+        self.soft.counts = counts;
         self.soft.known.retain(|&h| soft_bodies.contains(h));
         let mut new: Vec<SoftBodyHandle> = soft_bodies
             .iter()
@@ -91,17 +98,9 @@ impl RuleHooks {
                 if source.is_some_and(|s| !self.soft.known.contains(&s)) {
                     return true;
                 }
-                let rules = &mut self.decide.rules;
                 if let Some(source) = source {
-                    rules.give_piece(soft_bodies[source].root_body(), body.root_body());
-                }
-                let root = body.root_body();
-                for (_, cluster) in body.live_clusters() {
-                    let proxy = cluster.proxy();
-                    if proxy != root && rules.parent(proxy).is_none() {
-                        // The root is a new body: no cycle can go through it.
-                        let _ = rules.set_parent(proxy, root);
-                    }
+                    let from = soft_bodies[source].root_body();
+                    self.decide.rules.give_piece(from, body.root_body());
                 }
                 self.soft.known.insert(handle);
                 false
@@ -109,6 +108,23 @@ impl RuleHooks {
             if new.len() == before {
                 // Sources no longer in the set: the pieces keep no rules.
                 self.soft.known.extend(new.drain(..));
+            }
+        }
+        let rules = &mut self.decide.rules;
+        for (_, body) in soft_bodies.iter() {
+            let root = body.root_body();
+            // Only roots the rules name: a link alone would have the hooks
+            // watch a world without rules.
+            if !rules.holds_rules_about(root) {
+                continue;
+            }
+            for (_, cluster) in body.live_clusters() {
+                let proxy = cluster.proxy();
+                if proxy != root && rules.parent(proxy).is_none() {
+                    // A proxy is a leaf of Rapier's making: no cycle goes
+                    // through it.
+                    let _ = rules.set_parent(proxy, root);
+                }
             }
         }
     }

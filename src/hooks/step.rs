@@ -34,7 +34,7 @@ impl RuleHooks {
 
     /// [`step`](Self::step), with Rapier's events sent to `events`.
     pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
-        self.follow_soft_bodies(&world.soft_bodies);
+        self.follow_soft_bodies(&world.soft_bodies, &world.bodies);
         if self.idle(&world.colliders) {
             // The same call as `world.step_with_events`, so that a world the
             // rules do not reach steps as plainly as it can
@@ -108,7 +108,7 @@ impl RuleHooks {
         ccd_solver: &mut CCDSolver,
         events: &dyn EventHandler,
     ) {
-        self.follow_soft_bodies(soft_bodies);
+        self.follow_soft_bodies(soft_bodies, bodies);
         let idle = self.idle(colliders);
         if idle {
             self.count_idle_step();

@@ -37,4 +37,11 @@ impl CollisionRuleSet {
         }
         given
     }
+
+    /// Whether the rules say anything of `body`: a record, an entry about
+    /// it, or a link of the parent map.
+    pub(crate) fn holds_rules_about(&self, body: RigidBodyHandle) -> bool {
+        let node = Node::Body(body);
+        self.record(node).is_some_and(|r| !r.is_empty()) || self.is_named(node) || self.in_hierarchy(body)
+    }
 }

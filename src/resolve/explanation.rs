@@ -58,6 +58,12 @@ pub struct Explanation {
     /// The rule the stage gave before the special case of `docs/semantics.md` (two
     /// non-dynamic colliders with `Normal` get `NoResponse`).
     pub decided: CollisionRule,
+    /// The rule keeps the pair's contacts but Rapier cannot: a `NoResponse`
+    /// pair of a soft body's surface and a rigid collider has no contacts
+    /// and no collision events, since Rapier 0.36.1's soft-body solver
+    /// solves every contact of such a pair (`docs/semantics.md`, "Soft
+    /// bodies"). Each side still moves as if the other were absent.
+    pub without_contacts: bool,
 }
 
 impl Explanation {

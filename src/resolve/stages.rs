@@ -45,12 +45,31 @@ impl CollisionRuleSet {
         a: ColliderHandle,
         b: ColliderHandle,
     ) -> CollisionRule {
-        self.explain(bodies, colliders, a, b).rule
+        self.explain_rule(bodies, colliders, a, b).rule
     }
 
-    /// [`resolve`](Self::resolve), with the stage, step and nodes that decided.
+    /// [`resolve`](Self::resolve), with the stage, step and nodes that
+    /// decided, and whether Rapier keeps the contacts the rule keeps (see
+    /// [`Explanation::without_contacts`]).
     #[must_use]
     pub fn explain(
+        &self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        a: ColliderHandle,
+        b: ColliderHandle,
+    ) -> Explanation {
+        let mut explanation = self.explain_rule(bodies, colliders, a, b);
+        let soft = |c: ColliderHandle| colliders.get(c).is_some_and(|c| c.deformable_mesh_ref().is_some());
+        explanation.without_contacts =
+            explanation.rule == CollisionRule::NoResponse && soft(a) != soft(b);
+        explanation
+    }
+
+    /// The rule of a pair and what decided it, without asking Rapier
+    /// about its contacts: the hook's path.
+    #[inline]
+    pub(crate) fn explain_rule(
         &self,
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
@@ -141,6 +160,7 @@ impl CollisionRuleSet {
             nodes: None,
             groups: None,
             decided: self.default_rule,
+            without_contacts: false,
         }
     }
 
@@ -183,5 +203,6 @@ fn decided(
         nodes: Some(nodes),
         groups: None,
         decided: rule,
+        without_contacts: false,
     }
 }

@@ -333,3 +333,192 @@ fn a_removed_soft_body_leaves_no_rule_behind() {
     let low = lowest(&world, again);
     assert!(low > -0.1, "a new soft body starts with no rules: lowest particle at {low}");
 }
+
+/// The edges of `body` that cross x = 0: tearing them splits a bar.
+fn edges_across_middle(world: &PhysicsWorld, body: SoftBodyHandle) -> Vec<u32> {
+    let soft = &world.soft_bodies[body];
+    let left = |v: u32| soft.particle_position(v as usize).x < 0.0;
+    (0..soft.edges().len() as u32)
+        .filter(|&e| {
+            let [a, b] = soft.edges()[e as usize].vertices;
+            left(a) != left(b)
+        })
+        .collect()
+}
+
+/// A bar over the ground with `rule` between the two, split after one step
+/// by `split`; every piece after the fall.
+fn split_bar(
+    way: Way,
+    rule: CollisionRule,
+    split: impl Fn(&mut PhysicsWorld, SoftBodyHandle) -> Option<SoftBodyTearEvent>,
+) -> Vec<(SoftBodyHandle, f32, bool)> {
+    let mut world = PhysicsWorld::new();
+    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
+    world.insert_collider(slab(5.0, 0.5), Some(floor));
+    let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
+    let root = world.soft_bodies[bar].root_body();
+    let mut hooks = RuleHooks::default();
+    give(&mut hooks, way, root, floor, rule);
+    hooks.step(&mut world);
+    let event = split(&mut world, bar).expect("the bar splits");
+    let pieces: Vec<SoftBodyHandle> = event.bodies().collect();
+    assert!(pieces.len() >= 2, "the split makes pieces: {}", pieces.len());
+    for _ in 0..STEPS {
+        hooks.step(&mut world);
+    }
+    pieces
+        .into_iter()
+        .map(|piece| {
+            let piece_root = world.soft_bodies[piece].root_body();
+            let kept = hooks.rules().shares_rules(root, piece_root)
+                || hooks.rules().specific(floor, piece_root) == rule;
+            (piece, lowest(&world, piece), kept)
+        })
+        .collect()
+}
+
+/// Both pieces of a bar cut in two, and of a bar torn in two, keep the
+/// bar's rule with the ground, however it was given.
+#[test]
+fn the_pieces_of_a_cut_or_a_tear_keep_the_rules_of_the_body_they_came_from() {
+    let cut = |world: &mut PhysicsWorld, bar| world.cut_soft_body(bar, &blade_at_x(0.1));
+    let tear = |world: &mut PhysicsWorld, bar| {
+        let edges = edges_across_middle(world, bar);
+        world.tear_soft_body(bar, &edges, &[])
+    };
+    for rule in [CollisionRule::NoResponse, CollisionRule::NoContacts, CollisionRule::NoPair] {
+        for way in WAYS {
+            for (how, pieces) in [("cut", split_bar(way, rule, cut)), ("tear", split_bar(way, rule, tear))] {
+                for (piece, low, kept) in pieces {
+                    assert!(low < -1.0, "{how} {way:?} {rule:?}: piece {piece:?} rests at {low}");
+                    if !matches!(way, Way::Groups) {
+                        assert!(kept, "{how} {way:?} {rule:?}: piece {piece:?} lost the bar's rule");
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A bar pulled apart past its tear strain tears during Rapier's step; the
+/// pieces share the bar's rules from the next step.
+#[test]
+fn the_pieces_of_a_strain_tear_keep_the_rules_of_the_body_they_came_from() {
+    let mut world = PhysicsWorld::new();
+    world.gravity = Vector::ZERO;
+    let builder = soft_bar(at(0.0, 0.0), 1.0);
+    let ends: Vec<u32> = (0..builder.particle_positions().len() as u32)
+        .filter(|&i| builder.particle_positions()[i as usize].x.abs() > 0.99)
+        .collect();
+    let bar = world.insert_soft_body(builder.pinned_particles(ends.clone()).tear_strain(0.3));
+    let root = world.soft_bodies[bar].root_body();
+    let other = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -5.0)));
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_personal(root, CollisionRule::NoContacts);
+    hooks.rules_mut().set_specific(other, root, CollisionRule::NoPair);
+    let start: Vec<Vector> = ends.iter().map(|&i| world.soft_bodies[bar].particle_position(i as usize)).collect();
+    for k in 0..120 {
+        // The particles move to the pieces when the bar tears.
+        if world.soft_bodies.len() > 1 {
+            break;
+        }
+        let pull = 1.5 * (k as f32 / 60.0).min(1.0);
+        for (&i, &p) in ends.iter().zip(&start) {
+            let away = if p.x > 0.0 { pull } else { -pull };
+            let mut target = p;
+            target.x += away;
+            if let Some(soft) = world.soft_bodies.get_mut(bar) {
+                soft.set_particle_kinematic_target(i as usize, target);
+            }
+        }
+        hooks.step(&mut world);
+    }
+    // The step after the tear gives the pieces their rules.
+    hooks.step(&mut world);
+    let family: Vec<SoftBodyHandle> = world.soft_bodies.iter().map(|(h, _)| h).collect();
+    assert!(family.len() >= 2, "the bar tore: {} bodies", family.len());
+    for piece in family {
+        let piece_root = world.soft_bodies[piece].root_body();
+        assert!(hooks.rules().shares_rules(root, piece_root), "piece {piece:?} shares the bar's record");
+        assert_eq!(hooks.rules().specific(other, piece_root), CollisionRule::NoPair, "piece {piece:?} keeps the entry about it");
+    }
+}
+
+/// A rigid collider hung on the proxy of a cluster added to a soft body is
+/// reached by the soft body's rules through the root.
+#[test]
+fn a_collider_on_a_cluster_proxy_follows_the_soft_bodys_rules() {
+    let mut world = PhysicsWorld::new();
+    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
+    world.insert_collider(slab(5.0, 0.5), Some(floor));
+    let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
+    let root = world.soft_bodies[block].root_body();
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_specific(root, floor, CollisionRule::NoPair);
+    hooks.step(&mut world);
+    let cluster = world.add_soft_body_cluster(block, &[0, 1, 2, 3]).expect("a cluster of four particles");
+    let proxy = world.soft_bodies[block].cluster_proxy(cluster).expect("the cluster's proxy");
+    let hung = world.insert_collider(ColliderBuilder::ball(0.2), Some(proxy));
+    for _ in 0..STEPS {
+        hooks.step(&mut world);
+    }
+    assert_eq!(hooks.rules().parent(proxy), Some(root), "the proxy hangs under the root");
+    let low = lowest(&world, block);
+    assert!(low < -1.0, "the block and its ball fall through the ground: lowest particle at {low}");
+    let rule = hooks.rules().resolve(&world.bodies, &world.colliders, hung, world.bodies[floor].colliders()[0]);
+    assert_eq!(rule, CollisionRule::NoPair, "the ball on the proxy has the block's rule");
+}
+
+/// No rules means plain Rapier, bit for bit, in a world of soft bodies that
+/// are cut, torn and given clusters; and the hooks watch nothing.
+#[test]
+fn a_soft_world_without_rules_steps_as_plain_rapier() {
+    let scene = |hooked: bool| {
+        let mut world = PhysicsWorld::new();
+        let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
+        world.insert_collider(slab(5.0, 0.5), Some(floor));
+        let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
+        let block = world.insert_soft_body(soft_block(at(2.0, 0.8), 0.5));
+        let mut hooks = RuleHooks::default();
+        let mut step = |world: &mut PhysicsWorld| {
+            if hooked { hooks.step(world) } else { world.step() }
+        };
+        step(&mut world);
+        world.cut_soft_body(bar, &blade_at_x(0.1)).expect("the blade crosses the bar");
+        world.add_soft_body_cluster(block, &[0, 1, 2, 3]);
+        for _ in 0..STEPS {
+            step(&mut world);
+        }
+        let edges = edges_across_middle(&world, block);
+        world.tear_soft_body(block, &edges, &[]);
+        for _ in 0..20 {
+            step(&mut world);
+        }
+        let all: Vec<Vec<u32>> = world.soft_bodies.iter().map(|(h, _)| particles(&world, h)).collect();
+        (all, hooks.stats())
+    };
+    let (plain, _) = scene(false);
+    let (hooked, stats) = scene(true);
+    assert!(hooked == plain, "the soft bodies move otherwise with the hooks");
+    assert_eq!((stats.watched_colliders, stats.watched_bodies), (0, 0), "{stats:?}");
+}
+
+#[test]
+fn explain_says_a_soft_rigid_pair_without_response_has_no_contacts() {
+    let mut world = PhysicsWorld::new();
+    let floor = world.insert_body(RigidBodyBuilder::fixed());
+    let ground = world.insert_collider(slab(5.0, 0.5), Some(floor));
+    let block = world.insert_soft_body(soft_block(at(0.0, 2.0), 0.5));
+    let other = world.insert_soft_body(soft_block(at(3.0, 2.0), 0.5));
+    let surface = |b: SoftBodyHandle| world.soft_bodies[b].meshes().next().expect("a surface").collider();
+    let (mine, theirs) = (surface(block), surface(other));
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_personal(world.soft_bodies[block].root_body(), CollisionRule::NoResponse);
+    let why = hooks.rules().explain(&world.bodies, &world.colliders, ground, mine);
+    assert_eq!(why.rule, CollisionRule::NoResponse);
+    assert!(why.without_contacts, "{why:?}");
+    let why = hooks.rules().explain(&world.bodies, &world.colliders, theirs, mine);
+    assert!(!why.without_contacts, "two soft surfaces keep their contacts: {why:?}");
+}
+

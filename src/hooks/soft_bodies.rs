@@ -6,7 +6,9 @@
 //! cluster is given the root as parent in the parent map, so that a rule of
 //! the root reaches every collider of the body. A piece split off by a cut
 //! or a tear (a soft body whose `origin` is a body the hooks know) takes
-//! the rules of the body it came from, before the step after the split.
+//! the rules of the body it came from, before the step after the split; its
+//! colliders, which Rapier copies from the source's with what the crate
+//! wrote on them, keep the project's settings of the source's colliders.
 //!
 //! The look costs nothing while the numbers of soft bodies and of rigid
 //! bodies stay the same (a cluster added to a soft body adds a proxy body),
@@ -99,8 +101,18 @@ impl RuleHooks {
                     return true;
                 }
                 if let Some(source) = source {
-                    let from = soft_bodies[source].root_body();
-                    self.decide.rules.give_piece(from, body.root_body());
+                    let from = &soft_bodies[source];
+                    self.decide.rules.give_piece(from.root_body(), body.root_body());
+                    // The piece's colliders are Rapier's copies of the
+                    // source's, with what the crate wrote on them: they keep
+                    // the project's settings of the source's colliders.
+                    let originals: Vec<ColliderHandle> = from.meshes().map(|m| m.collider()).collect();
+                    for (i, mesh) in body.meshes().enumerate() {
+                        let original = originals.get(i).or(originals.first());
+                        if let Some(&written) = original.and_then(|&c| self.planned.written.get(c)) {
+                            self.planned.written.insert_evicting(mesh.collider(), written);
+                        }
+                    }
                 }
                 self.soft.known.insert(handle);
                 false

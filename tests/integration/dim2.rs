@@ -55,3 +55,8 @@ pub fn soft_bar(center: Vector, half: f32) -> SoftBodyBuilder {
 pub fn blade_at_x(x: f32) -> [Vector; 2] {
     [Vector::new(x, -10.0), Vector::new(x, 20.0)]
 }
+
+/// A small soft body for the random worlds: a 3x2 grid of particles.
+pub fn soft_piece(center: Vector) -> SoftBodyBuilder {
+    SoftBodyBuilder::grid(center, Vector::new(0.4, 0.2), 3, 2)
+}

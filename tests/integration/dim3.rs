@@ -64,3 +64,8 @@ pub fn blade_at_x(x: f32) -> [Vector; 3] {
         Vector::new(x, -10.0, 20.0),
     ]
 }
+
+/// A small soft body for the random worlds: a 3x2x2 grid of particles.
+pub fn soft_piece(center: Vector) -> SoftBodyBuilder {
+    SoftBodyBuilder::cuboid(center, Vector::new(0.4, 0.2, 0.2), 3, 2, 2)
+}

@@ -1,7 +1,7 @@
 //! Random edit sequences while stepping real worlds: after every step, each
 //! live pair's rule equals a fresh `resolve` (policy `OnChange`, no
 //! overrides), every pair in Rapier's graph is known to the hooks, and no
-//! live pair names a removed collider. And the planner changes nothing a
+//! live pair names a removed collider, also with soft bodies added and cut. And the planner changes nothing a
 //! user can see: the same world stepped with the planner on and off has the
 //! same live pairs with the same rules, and the same touching pairs. And the
 //! upkeep that looks only at what the rules reach, and plans only what each
@@ -67,13 +67,22 @@ fn edit() -> impl Strategy<Value = Edit> {
     ]
 }
 
+/// Every edit, and soft bodies added and cut.
+fn edit_with_soft() -> impl Strategy<Value = Edit> {
+    prop_oneof![
+        16 => edit(),
+        1 => (-1.5f32..1.5, 0.5f32..2.5).prop_map(|(x, y)| Edit::AddSoft(x, y)),
+        1 => (0..64usize).prop_map(Edit::CutSoft),
+    ]
+}
+
 proptest! {
     #![proptest_config(live_config(1, 0))]
 
     #[test]
     fn live_pairs_follow_every_edit(
         cubes in proptest::collection::vec((-1.5f32..1.5, 0.4f32..3.0, 0..KINDS.len()), 2..8),
-        edits in proptest::collection::vec(edit(), 1..40),
+        edits in proptest::collection::vec(edit_with_soft(), 1..40),
     ) {
         let mut run = Run::new(&cubes, true, false);
         run.apply(&Edit::Step(1));

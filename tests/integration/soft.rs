@@ -521,4 +521,3 @@ fn explain_says_a_soft_rigid_pair_without_response_has_no_contacts() {
     let why = hooks.rules().explain(&world.bodies, &world.colliders, theirs, mine);
     assert!(!why.without_contacts, "two soft surfaces keep their contacts: {why:?}");
 }
-

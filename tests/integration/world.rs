@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use super::rapier::prelude::*;
 use super::rules::{CollisionGroup, CollisionRule, Node, RuleHooks, Stage};
-use super::{at, cube, pose_bits, slab};
+use super::{at, blade_at_x, cube, pose_bits, slab, soft_piece};
 
 #[derive(Clone, Debug)]
 pub enum Edit {
@@ -51,6 +51,12 @@ pub enum Edit {
     Bracket(usize),
     /// The rule set saved and loaded back into the hooks (with `serde`).
     Reload,
+    /// A small soft body at a point: its root body and surface join the
+    /// bodies and colliders the edits name.
+    AddSoft(f32, f32),
+    /// A soft body (by index among those added) cut across its middle:
+    /// the pieces join the bodies and colliders the edits name.
+    CutSoft(usize),
     /// A save with one number changed (the leaf picked by the first value,
     /// the number the second) loaded into the hooks if the loader takes it
     /// (with `serde`): loads as an error or as a rule set the hooks keep
@@ -101,6 +107,8 @@ pub struct Run {
     bodies: Vec<RigidBodyHandle>,
     colliders: Vec<ColliderHandle>,
     removed: Vec<ColliderHandle>,
+    /// The soft bodies added, and the pieces of their cuts.
+    softs: Vec<SoftBodyHandle>,
     /// The settings the project gave colliders through Rapier.
     project: HashMap<ColliderHandle, Project>,
     /// For colliders the project changed since the last step: their
@@ -155,6 +163,7 @@ impl Run {
             bodies: vec![ground],
             colliders: vec![floor],
             removed: Vec::new(),
+            softs: Vec::new(),
             project: HashMap::new(),
             since_step: HashMap::new(),
             at_last_step: (0, 0),
@@ -174,6 +183,54 @@ impl Run {
         let collider = self.world.insert_collider(cube(0.4), Some(body));
         self.bodies.push(body);
         self.colliders.push(collider);
+    }
+
+    /// Names the pieces of cuts and tears (strain tears happen in Rapier's
+    /// step) in the edits. Rapier copies the source's colliders, the
+    /// project's settings on them included.
+    fn adopt_pieces(&mut self) {
+        let mut pieces: Vec<SoftBodyHandle> = self
+            .world
+            .soft_bodies
+            .iter()
+            .map(|(h, _)| h)
+            .filter(|h| !self.softs.contains(h))
+            .collect();
+        pieces.sort_unstable_by_key(|h| h.into_raw_parts());
+        for piece in pieces {
+            let bodies = &self.world.soft_bodies;
+            let source = bodies[piece].origin().and_then(|o| bodies.get(o));
+            let project = source
+                .and_then(|s| s.meshes().next())
+                .and_then(|m| self.project.get(&m.collider()).copied());
+            let copies: Vec<ColliderHandle> = bodies[piece].meshes().map(|m| m.collider()).collect();
+            self.adopt_soft(piece);
+            for copy in copies {
+                if let Some(project) = project {
+                    self.project.insert(copy, project);
+                }
+            }
+        }
+    }
+
+    /// Whether `collider` is a soft body's surface. The project's own layers
+    /// on a soft surface are not edited here: how the pieces of a cut copy
+    /// them is not modelled yet (`docs/semantics.md`, "Soft bodies").
+    fn soft_surface(&self, collider: ColliderHandle) -> bool {
+        self.world
+            .colliders
+            .get(collider)
+            .is_some_and(|c| c.deformable_mesh_ref().is_some())
+    }
+
+    /// Names a soft body's root body and surface colliders in the edits.
+    fn adopt_soft(&mut self, soft: SoftBodyHandle) {
+        let Some(body) = self.world.soft_bodies.get(soft) else {
+            return;
+        };
+        self.softs.push(soft);
+        self.bodies.push(body.root_body());
+        self.colliders.extend(body.meshes().map(|m| m.collider()));
     }
 
     fn node(&self, i: usize) -> Node {
@@ -222,7 +279,9 @@ impl Run {
             Edit::DefaultRule(r) => self.hooks.rules_mut().set_default_rule(r),
             Edit::Kind(b, k) => {
                 let handle = self.body(b);
-                if let Some(body) = self.world.bodies.get_mut(handle) {
+                // A soft body's proxy gets its type from Rapier alone.
+                let soft = self.world.bodies.get(handle).is_some_and(|b| b.is_soft_frame());
+                if let Some(body) = self.world.bodies.get_mut(handle).filter(|_| !soft) {
                     body.set_body_type(KINDS[k], true);
                 }
             }
@@ -239,6 +298,22 @@ impl Run {
                 }
             }
             Edit::AddCube(x, y, kind) => self.add_cube(x, y, kind),
+            Edit::AddSoft(x, y) => {
+                let soft = self.world.insert_soft_body(soft_piece(at(x, y)));
+                self.adopt_soft(soft);
+            }
+            Edit::CutSoft(i) => {
+                let Some(&soft) = self.softs.get(i % self.softs.len().max(1)) else {
+                    return;
+                };
+                let Some(body) = self.world.soft_bodies.get(soft) else {
+                    return;
+                };
+                let n = body.num_particles().max(1) as f32;
+                let middle = body.particle_positions().map(|p| p.x).sum::<f32>() / n + 0.01;
+                self.world.cut_soft_body(soft, &blade_at_x(middle));
+                self.adopt_pieces();
+            }
             Edit::AddCollider(b) => {
                 let handle = self.body(b);
                 if self.world.bodies.contains(handle) {
@@ -250,7 +325,13 @@ impl Run {
             Edit::MoveCollider(c, b) => {
                 let (handle, body) = (self.colliders[c % self.colliders.len()], self.body(b));
                 let world = &mut self.world;
-                if world.colliders.contains(handle) && world.bodies.contains(body) {
+                // A soft body's surface stays bound to its cluster, and a
+                // collider moved onto a proxy is the known gap of
+                // `docs/semantics.md`, "Soft bodies": colliders move
+                // between rigid bodies only.
+                let bound = world.colliders.get(handle).is_some_and(|c| c.deformable_mesh_ref().is_some());
+                let onto_soft = world.bodies.get(body).is_some_and(|b| b.is_soft_frame());
+                if world.colliders.contains(handle) && world.bodies.contains(body) && !bound && !onto_soft {
                     world
                         .colliders
                         .set_parent(handle, Some(body), &mut world.bodies);
@@ -274,6 +355,9 @@ impl Run {
             // run last stepped.
             Edit::ProjectCollision(c, m, f) | Edit::ProjectSolver(c, m, f) => {
                 let handle = self.colliders[c % self.colliders.len()];
+                if self.soft_surface(handle) {
+                    return;
+                }
                 let groups = InteractionGroups::new(LAYERS[m], LAYERS[f], InteractionTestMode::And);
                 self.remember(handle);
                 if let Some(collider) = self.world.colliders.get_mut(handle) {
@@ -288,6 +372,9 @@ impl Run {
             }
             Edit::ProjectTypes(c, t) => {
                 let handle = self.colliders[c % self.colliders.len()];
+                if self.soft_surface(handle) {
+                    return;
+                }
                 self.remember(handle);
                 if let Some(collider) = self.world.colliders.get_mut(handle) {
                     collider.set_active_collision_types(TYPES[t]);
@@ -328,6 +415,7 @@ impl Run {
             Edit::Bracket(n) => {
                 self.before_step();
                 let (hooks, w) = (&mut self.hooks, &mut self.world);
+                hooks.follow_soft_bodies(&w.soft_bodies, &w.bodies);
                 hooks.prepare(&w.bodies, &mut w.colliders);
                 hooks.freeze_manifolds(&w.narrow_phase);
                 hooks.wake_edited(&mut w.islands, &mut w.bodies);
@@ -335,6 +423,7 @@ impl Run {
                     w.step_with_events(&*hooks, &());
                 }
                 hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
+                self.adopt_pieces();
                 self.check();
             }
             Edit::Reload => {
@@ -388,6 +477,7 @@ impl Run {
     pub fn step(&mut self) {
         self.before_step();
         self.hooks.step(&mut self.world);
+        self.adopt_pieces();
         self.check();
     }
 

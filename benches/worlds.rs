@@ -12,6 +12,9 @@
 //!   the README's quick-start rule `set_specific(ghost, floor, NoResponse)`,
 //!   against the same ghost excluded from the floor by hand-written Rapier
 //!   solver groups;
+//! - `soft`: 1,000 awake boxes on a floor with a soft cube among them and a
+//!   pinned cloth above, with no rules and with a few rules on the soft
+//!   bodies that leave the physics as it is;
 //! - `pile`: the 1,000-box pile of `benches/step.rs` allowed to fall
 //!   asleep, with no rules and with specific rules on 5% of the bodies;
 //! - `churn`: worlds that change every step (shooters, a streamed level, a
@@ -186,6 +189,63 @@ fn floor(by_hand: bool) -> Scene {
         world.colliders[floor].set_solver_groups(solver(2, 1));
     } else {
         rules.set_specific(ghost, floor, CollisionRule::NoResponse);
+    }
+    for _ in 0..30 {
+        world.step();
+    }
+    Scene { world, rules }
+}
+
+/// 1,000 boxes on a floor (awake), a soft cube resting among them and a
+/// cloth pinned at its corners above them. With `ruled`, a few rules reach
+/// the soft bodies: `NoResponse` between the cube and a box it never meets,
+/// `NoPair` between the cloth and another, and the cube in a group of its
+/// own whose rule with the default group is `Normal`; the physics is the
+/// plain twin's.
+fn soft(ruled: bool) -> Scene {
+    let mut world = PhysicsWorld::new();
+    let ground = world.insert_body(RigidBodyBuilder::fixed());
+    world.insert_collider(
+        ColliderBuilder::cuboid(40.0, 0.5, 40.0).translation(Vector::new(0.0, -0.5, 0.0)),
+        Some(ground),
+    );
+    let mut boxes = Vec::new();
+    for i in 0..1_000 {
+        let (x, z) = ((i % 32) as f32 * 2.0 - 32.0, (i / 32) as f32 * 2.0 - 32.0);
+        let body = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .translation(Vector::new(x, 0.5, z))
+                .can_sleep(false),
+        );
+        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
+        boxes.push(body);
+    }
+    let cube = SoftBodyBuilder::cuboid(Vector::new(1.0, 0.6, 1.0), Vector::splat(0.5), 4, 4, 4)
+        .cell_model(SoftBodyCellModel::Corotational)
+        .softness(SpringCoefficients::new(30.0, 1.0));
+    let cube = world.insert_soft_body(cube);
+    let (n, step) = (12usize, 0.25);
+    let corners = [0, n - 1, n * (n - 1), n * n - 1].map(|i| i as u32);
+    let cloth = SoftBodyBuilder::cloth(
+        Vector::new(-5.0, 2.5, -5.0),
+        Vector::new(step, 0.0, 0.0),
+        Vector::new(0.0, 0.0, step),
+        n,
+        n,
+    )
+    .pinned_particles(corners);
+    let cloth = world.insert_soft_body(cloth);
+    let mut rules = CollisionRuleSet::default();
+    if ruled {
+        let (cube_root, cloth_root) = (
+            world.soft_bodies[cube].root_body(),
+            world.soft_bodies[cloth].root_body(),
+        );
+        rules.set_specific(cube_root, boxes[999], CollisionRule::NoResponse);
+        rules.set_specific(cloth_root, boxes[998], CollisionRule::NoPair);
+        let own = rules.create_group();
+        rules.set_group(cube_root, Some(own));
+        rules.set_group_rule(own, CollisionGroup::DEFAULT_DYNAMIC, CollisionRule::Normal);
     }
     for _ in 0..30 {
         world.step();
@@ -713,6 +773,9 @@ fn variants() -> Vec<(String, usize, Maker)> {
         all.push(("field/control".into(), n, Box::new(move |_| field(n))));
         all.push(("field/none".into(), n, Box::new(move |_| field(n))));
     }
+    all.push(("soft/control".into(), 1_002, Box::new(|_| soft(false))));
+    all.push(("soft/none".into(), 1_002, Box::new(|_| soft(false))));
+    all.push(("soft/rules".into(), 1_002, Box::new(soft)));
     all.push(("floor/control".into(), 2_001, Box::new(|_| floor(true))));
     all.push(("floor/one-rule".into(), 2_001, Box::new(|r| floor(!r))));
     all.push((

@@ -104,6 +104,8 @@ impl Twins {
             .map(|(h, c)| (h, settings(c)))
             .collect();
         self.hooks
+            .follow_soft_bodies(&self.world.soft_bodies, &self.world.bodies);
+        self.hooks
             .prepare(&self.world.bodies, &mut self.world.colliders);
         for (handle, was) in before {
             let now = settings(&self.world.colliders[handle]);

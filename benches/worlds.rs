@@ -151,6 +151,23 @@ fn field(n: usize) -> Scene {
     }
 }
 
+/// `n` boxes that never sleep, on the floor in rows of `row`, 2 m apart.
+fn awake_boxes(world: &mut PhysicsWorld, n: usize, row: usize) -> Vec<RigidBodyHandle> {
+    let half = row as f32;
+    (0..n)
+        .map(|i| {
+            let (x, z) = ((i % row) as f32 * 2.0 - half, (i / row) as f32 * 2.0 - half);
+            let body = world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .translation(Vector::new(x, 0.5, z))
+                    .can_sleep(false),
+            );
+            world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
+            body
+        })
+        .collect()
+}
+
 /// 2,000 awake boxes and a ghost ball on one floor. With `by_hand`, the
 /// ghost passes the floor through Rapier solver groups; else through the
 /// quick-start rule.
@@ -161,15 +178,7 @@ fn floor(by_hand: bool) -> Scene {
         ColliderBuilder::cuboid(50.0, 0.5, 50.0).translation(Vector::new(0.0, -0.5, 0.0)),
         Some(ground),
     );
-    for i in 0..2_000 {
-        let (x, z) = ((i % 45) as f32 * 2.0 - 45.0, (i / 45) as f32 * 2.0 - 45.0);
-        let body = world.insert_body(
-            RigidBodyBuilder::dynamic()
-                .translation(Vector::new(x, 0.5, z))
-                .can_sleep(false),
-        );
-        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
-    }
+    awake_boxes(&mut world, 2_000, 45);
     let ghost = world.insert_body(
         RigidBodyBuilder::dynamic()
             .translation(Vector::new(0.0, 5.0, 46.0))
@@ -209,17 +218,7 @@ fn soft(ruled: bool) -> Scene {
         ColliderBuilder::cuboid(40.0, 0.5, 40.0).translation(Vector::new(0.0, -0.5, 0.0)),
         Some(ground),
     );
-    let mut boxes = Vec::new();
-    for i in 0..1_000 {
-        let (x, z) = ((i % 32) as f32 * 2.0 - 32.0, (i / 32) as f32 * 2.0 - 32.0);
-        let body = world.insert_body(
-            RigidBodyBuilder::dynamic()
-                .translation(Vector::new(x, 0.5, z))
-                .can_sleep(false),
-        );
-        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(body));
-        boxes.push(body);
-    }
+    let boxes = awake_boxes(&mut world, 1_000, 32);
     let cube = SoftBodyBuilder::cuboid(Vector::new(1.0, 0.6, 1.0), Vector::splat(0.5), 4, 4, 4)
         .cell_model(SoftBodyCellModel::Corotational)
         .softness(SpringCoefficients::new(30.0, 1.0));

@@ -43,6 +43,15 @@ fn give(hooks: &mut RuleHooks, way: Way, first: RigidBodyHandle, second: RigidBo
     }
 }
 
+/// A world with a fixed ground slab whose top is at y = 0: the world and
+/// the ground's body.
+fn on_ground() -> (PhysicsWorld, RigidBodyHandle) {
+    let mut world = PhysicsWorld::new();
+    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
+    world.insert_collider(slab(5.0, 0.5), Some(floor));
+    (world, floor)
+}
+
 /// Every particle's position, bit for bit.
 fn particles(world: &PhysicsWorld, body: SoftBodyHandle) -> Vec<u32> {
     world.soft_bodies[body]
@@ -238,9 +247,7 @@ fn distance(a: &[u32], b: &[u32]) -> f32 {
 /// A small soft block falling on a larger one: the upper block's
 /// particles, and the collision events between the two.
 fn block_over_block(lower: bool, rule: Option<(Way, CollisionRule)>) -> (Vec<u32>, usize) {
-    let mut world = PhysicsWorld::new();
-    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
-    world.insert_collider(slab(5.0, 0.5), Some(floor));
+    let (mut world, _) = on_ground();
     let events_on = ColliderBuilder::ball(0.05).active_events(ActiveEvents::COLLISION_EVENTS);
     let below = world.insert_soft_body(soft_block(at(0.0, 0.5), 0.5).surface_collider(events_on.clone()));
     let above = world.insert_soft_body(soft_block(at(0.0, 1.6), 0.3).surface_collider(events_on));
@@ -282,47 +289,23 @@ fn two_soft_blocks_ignore_each_other_as_their_rule_says() {
     }
 }
 
-/// Both pieces of a bar cut in two keep the bar's rule with the ground.
-#[test]
-fn the_pieces_of_a_cut_keep_the_rules_of_the_body_they_came_from() {
-    for rule in [CollisionRule::NoResponse, CollisionRule::NoContacts, CollisionRule::NoPair] {
-        for way in WAYS {
-            let mut world = PhysicsWorld::new();
-            let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
-            world.insert_collider(slab(5.0, 0.5), Some(floor));
-            let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
-            let root = world.soft_bodies[bar].root_body();
-            let mut hooks = RuleHooks::default();
-            give(&mut hooks, way, root, floor, rule);
-            hooks.step(&mut world);
-            let cut = world.cut_soft_body(bar, &blade_at_x(0.1)).expect("the blade crosses the bar");
-            let pieces: Vec<SoftBodyHandle> = cut.bodies().collect();
-            assert_eq!(pieces.len(), 2, "the cut makes two pieces");
-            for _ in 0..STEPS {
-                hooks.step(&mut world);
-            }
-            for piece in pieces {
-                let low = lowest(&world, piece);
-                assert!(low < -1.0, "{way:?} {rule:?}: piece {piece:?} rests at {low}");
-                let piece_root = world.soft_bodies[piece].root_body();
-                let same = hooks.rules().shares_rules(root, piece_root) || matches!(way, Way::SpecificReversed | Way::Groups);
-                assert!(same || piece_root == root, "{way:?}: the piece shares the bar's rules");
-            }
-        }
-    }
-}
-
-/// Removing a soft body forgets its rules, as removing a rigid body does.
-#[test]
-fn a_removed_soft_body_leaves_no_rule_behind() {
-    let mut world = PhysicsWorld::new();
-    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
-    world.insert_collider(slab(5.0, 0.5), Some(floor));
+/// A soft block over the ground with `NoPair` between the two, stepped
+/// once: the world, the ground's body, the block and the hooks.
+fn block_without_ground() -> (PhysicsWorld, RigidBodyHandle, SoftBodyHandle, RuleHooks) {
+    let (mut world, floor) = on_ground();
     let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
     let root = world.soft_bodies[block].root_body();
     let mut hooks = RuleHooks::default();
     hooks.rules_mut().set_specific(root, floor, CollisionRule::NoPair);
     hooks.step(&mut world);
+    (world, floor, block, hooks)
+}
+
+/// Removing a soft body forgets its rules, as removing a rigid body does.
+#[test]
+fn a_removed_soft_body_leaves_no_rule_behind() {
+    let (mut world, floor, block, mut hooks) = block_without_ground();
+    let root = world.soft_bodies[block].root_body();
     world.remove_soft_body(block);
     hooks.step(&mut world);
     assert_eq!(hooks.rules().specific(floor, root), CollisionRule::Defer, "the entry went with the body");
@@ -353,9 +336,7 @@ fn split_bar(
     rule: CollisionRule,
     split: impl Fn(&mut PhysicsWorld, SoftBodyHandle) -> Option<SoftBodyTearEvent>,
 ) -> Vec<(SoftBodyHandle, f32, bool)> {
-    let mut world = PhysicsWorld::new();
-    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
-    world.insert_collider(slab(5.0, 0.5), Some(floor));
+    let (mut world, floor) = on_ground();
     let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
     let root = world.soft_bodies[bar].root_body();
     let mut hooks = RuleHooks::default();
@@ -449,14 +430,8 @@ fn the_pieces_of_a_strain_tear_keep_the_rules_of_the_body_they_came_from() {
 /// reached by the soft body's rules through the root.
 #[test]
 fn a_collider_on_a_cluster_proxy_follows_the_soft_bodys_rules() {
-    let mut world = PhysicsWorld::new();
-    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
-    world.insert_collider(slab(5.0, 0.5), Some(floor));
-    let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
+    let (mut world, floor, block, mut hooks) = block_without_ground();
     let root = world.soft_bodies[block].root_body();
-    let mut hooks = RuleHooks::default();
-    hooks.rules_mut().set_specific(root, floor, CollisionRule::NoPair);
-    hooks.step(&mut world);
     let cluster = world.add_soft_body_cluster(block, &[0, 1, 2, 3]).expect("a cluster of four particles");
     let proxy = world.soft_bodies[block].cluster_proxy(cluster).expect("the cluster's proxy");
     let hung = world.insert_collider(ColliderBuilder::ball(0.2), Some(proxy));
@@ -475,9 +450,7 @@ fn a_collider_on_a_cluster_proxy_follows_the_soft_bodys_rules() {
 #[test]
 fn a_soft_world_without_rules_steps_as_plain_rapier() {
     let scene = |hooked: bool| {
-        let mut world = PhysicsWorld::new();
-        let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
-        world.insert_collider(slab(5.0, 0.5), Some(floor));
+        let (mut world, _) = on_ground();
         let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
         let block = world.insert_soft_body(soft_block(at(2.0, 0.8), 0.5));
         let mut hooks = RuleHooks::default();

@@ -11,7 +11,7 @@ use super::super::rapier::prelude::*;
 
 use super::{CalculatorContext, ManifoldUpdate, PairCreated, PairKey, PairState, RecalculationPolicy, RuleHooks};
 use super::super::CollisionRule;
-use super::super::model::{BodyKinds, dynamic_body};
+use super::super::model::{BodyKinds, dynamic_body, soft_rigid};
 use super::super::resolve::special_case;
 use super::super::world::body_types;
 
@@ -304,19 +304,6 @@ fn sensor_pair(context: &PairFilterContext<'_>) -> bool {
     sensor(context.collider1) || sensor(context.collider2)
 }
 
-/// Whether one collider of the pair is a soft body's surface and the other
-/// is not.
-#[inline]
-fn soft_rigid_pair(context: &PairFilterContext<'_>) -> bool {
-    let soft = |c: ColliderHandle| {
-        context
-            .colliders
-            .get(c)
-            .is_some_and(|c| c.deformable_mesh_ref().is_some())
-    };
-    soft(context.collider1) != soft(context.collider2)
-}
-
 /// Whether the body of each collider of `key` is dynamic, in key order,
 /// read from the hook's context.
 #[inline]
@@ -466,7 +453,7 @@ impl PhysicsHooks for RuleHooks {
             // Rapier's soft-body solver answers every soft-rigid pair with
             // contacts: one without response has none (`docs/semantics.md`,
             // "Soft bodies").
-            let computes = computes(rule, manifold) && (rule.responds() || !soft_rigid_pair(context));
+            let computes = computes(rule, manifold) && (rule.responds() || !soft_rigid(context.colliders, a, b));
             // The CCD's sweep takes a sensor for a pass-through hit, which
             // clamps nothing and gives the intersection events: a sensor
             // pair stays in the sweep.

@@ -140,6 +140,9 @@ impl RuleHooks {
             hooked_colliders: self.planned.hooked,
             tracked_pairs: self.pairs.len(),
             shares_project_bits: self.planned.plan.room.is_some(),
+            // Counted when the pairs are looked up after a step; a step
+            // that skips the look leaves them as they were.
+            soft_pairs_without_contacts: self.stats.soft_pairs_without_contacts,
             ..StepStats::default()
         };
     }

@@ -118,6 +118,11 @@ pub struct StepStats {
     pub pairs_recalculated: usize,
     /// Pairs the hooks keep state for (hooked pairs and overrides).
     pub tracked_pairs: usize,
+    /// Live `NoResponse` pairs of a soft body's surface and a rigid
+    /// collider after the step: Rapier 0.36.1 solves every contact of such
+    /// a pair, so they have none, and no collision events
+    /// (`docs/semantics.md`, "Soft bodies").
+    pub soft_pairs_without_contacts: usize,
     /// Colliders and bodies found removed and forgotten before the step.
     pub removed_objects: usize,
     /// Whether the current plan shares Rapier's group bits or default

@@ -10,6 +10,7 @@ use super::super::rapier::prelude::*;
 use super::step::missing;
 use super::{ManifoldUpdate, PairKey, PairState, PlanCause, RecalculationPolicy, RuleHooks};
 use super::super::CollisionRule;
+use super::super::model::soft_rigid;
 use super::super::planner::Plan;
 use super::super::world::{Joints, filters_pass, pair_exists, partners_of, same_body};
 
@@ -112,7 +113,7 @@ impl RuleHooks {
         let step = self.boundary.step;
         let touched: HashSet<ColliderHandle> = touched.into_iter().collect();
         let regrouped = std::mem::take(&mut self.queued.regrouped);
-        let (mut answered, mut never_ended) = (0, false);
+        let (mut answered, mut never_ended, mut without_contacts) = (0, false, 0);
         let mut retyped = Vec::new();
         let recomputes = self.decide.policy != RecalculationPolicy::Manual;
         let plan = &self.planned.plan;
@@ -152,7 +153,12 @@ impl RuleHooks {
                 exists_from_hooked_side() && filters_pass(bodies, colliders, joints, a, b)
             };
             never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
+            // Rapier answers a soft-rigid pair with its own solver: it
+            // cannot witness a step without the hooks.
+            let soft = keep && state.rule() == CollisionRule::NoResponse && soft_rigid(colliders, a, b);
+            without_contacts += usize::from(soft);
             if keep
+                && !soft
                 && witness.is_none()
                 && state.answered_in(step)
                 && state.manifold == ManifoldUpdate::ByRule
@@ -192,6 +198,7 @@ impl RuleHooks {
         // after the next step: by then Rapier has found them again, or not.
         self.queued.touched.extend(regrouped);
         self.stats.hooked_pairs_answered = answered;
+        self.stats.soft_pairs_without_contacts = without_contacts;
         self.stats.tracked_pairs = self.pairs.len();
     }
 }

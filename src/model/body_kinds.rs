@@ -1,5 +1,7 @@
 //! Whether a body is dynamic: the one fact about Rapier's body types the
-//! rules read (the default groups, the special case), written once.
+//! rules read (the default groups, the special case), written once; and
+//! whether a pair joins a soft body's surface to a rigid collider, the one
+//! fact about soft bodies the answers read.
 
 use super::super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodyHandle, RigidBodySet};
 
@@ -22,6 +24,15 @@ pub(crate) fn is_dynamic(bodies: &RigidBodySet, colliders: &ColliderSet, node: N
         Node::Body(handle) => Some(handle),
     };
     dynamic_body(bodies, body)
+}
+
+/// Whether one collider of the pair is a soft body's surface and the other
+/// is not: Rapier 0.36.1 solves every contact of such a pair, so one without
+/// response has none (`docs/semantics.md`, "Soft bodies").
+#[inline]
+pub(crate) fn soft_rigid(colliders: &ColliderSet, a: ColliderHandle, b: ColliderHandle) -> bool {
+    let soft = |c: ColliderHandle| colliders.get(c).is_some_and(|c| c.deformable_mesh_ref().is_some());
+    soft(a) != soft(b)
 }
 
 /// Whether each body of a pair of colliders is dynamic, in the pair's

@@ -50,6 +50,6 @@ pub use rule::CollisionRule;
 pub use rule_set::CollisionRuleSet;
 #[cfg(feature = "serde")]
 pub use snapshot::{LoadError, SavedRuleSet};
-pub(crate) use body_kinds::{BodyKinds, dynamic_body, is_dynamic};
+pub(crate) use body_kinds::{BodyKinds, dynamic_body, is_dynamic, soft_rigid};
 pub(crate) use node::HandleMap;
 pub(crate) use records::Record;

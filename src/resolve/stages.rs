@@ -5,7 +5,7 @@ use super::super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodySet};
 
 use super::chain::{Chain, Link};
 use super::special_case::special_case;
-use super::super::model::BodyKinds;
+use super::super::model::{BodyKinds, soft_rigid};
 use super::super::{CollisionRule, CollisionRuleSet, Explanation, Node, Stage};
 
 impl CollisionRuleSet {
@@ -60,9 +60,8 @@ impl CollisionRuleSet {
         b: ColliderHandle,
     ) -> Explanation {
         let mut explanation = self.explain_rule(bodies, colliders, a, b);
-        let soft = |c: ColliderHandle| colliders.get(c).is_some_and(|c| c.deformable_mesh_ref().is_some());
         explanation.without_contacts =
-            explanation.rule == CollisionRule::NoResponse && soft(a) != soft(b);
+            explanation.rule == CollisionRule::NoResponse && soft_rigid(colliders, a, b);
         explanation
     }
 

@@ -109,7 +109,7 @@ impl EventHandler for Events {
 /// A soft block falling on a fixed ground (or on nothing), with `rule`
 /// between the ground and the block given `way`: the block's particles
 /// after the fall and the collision events that started.
-fn block_over_ground(ground: bool, rule: Option<(Way, CollisionRule)>, ground_first: bool) -> (Vec<u32>, f32, usize) {
+fn block_over_ground(ground: bool, rule: Option<(Way, CollisionRule)>, ground_first: bool) -> (Vec<u32>, f32, usize, usize) {
     let mut world = PhysicsWorld::new();
     let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
     if ground {
@@ -123,20 +123,22 @@ fn block_over_ground(ground: bool, rule: Option<(Way, CollisionRule)>, ground_fi
         give(&mut hooks, way, first, second, rule);
     }
     let events = Events::default();
+    let mut without_contacts = 0;
     for _ in 0..STEPS {
         hooks.step_with_events(&mut world, &events);
+        without_contacts = without_contacts.max(hooks.stats().soft_pairs_without_contacts);
     }
     let started = events.started.load(std::sync::atomic::Ordering::Relaxed);
-    (particles(&world, block), lowest(&world, block), started)
+    (particles(&world, block), lowest(&world, block), started, without_contacts)
 }
 
 #[test]
 fn a_soft_block_rests_on_the_ground_as_in_plain_rapier_with_normal_rules() {
-    let (plain, low, _) = block_over_ground(true, None, false);
+    let (plain, low, _, _) = block_over_ground(true, None, false);
     assert!(low > -0.1, "the block rests on the ground: lowest particle at {low}");
     for way in WAYS {
         for ground_first in [false, true] {
-            let (ruled, low, _) = block_over_ground(true, Some((way, CollisionRule::Normal)), ground_first);
+            let (ruled, low, _, _) = block_over_ground(true, Some((way, CollisionRule::Normal)), ground_first);
             assert!(ruled == plain, "{way:?} Normal (ground first: {ground_first}) moves the block otherwise: lowest at {low}");
         }
     }
@@ -144,7 +146,7 @@ fn a_soft_block_rests_on_the_ground_as_in_plain_rapier_with_normal_rules() {
 
 #[test]
 fn a_soft_block_falls_as_if_the_ground_were_absent_for_every_rule_but_normal() {
-    let (alone, alone_low, _) = block_over_ground(false, None, false);
+    let (alone, alone_low, _, _) = block_over_ground(false, None, false);
     assert!(alone_low < -1.0, "alone, the block falls: lowest particle at {alone_low}");
     for rule in [CollisionRule::NoResponse, CollisionRule::NoContacts, CollisionRule::NoPair] {
         for way in WAYS {
@@ -152,7 +154,7 @@ fn a_soft_block_falls_as_if_the_ground_were_absent_for_every_rule_but_normal() {
                 // A personal rule on the ground reaches every pair of the
                 // ground; on the block, every pair of the block: both are
                 // the pair's rule here.
-                let (ruled, low, started) = block_over_ground(true, Some((way, rule)), ground_first);
+                let (ruled, low, started, without_contacts) = block_over_ground(true, Some((way, rule)), ground_first);
                 assert!(
                     ruled == alone,
                     "{way:?} {rule:?} (ground first: {ground_first}): lowest particle at {low}, alone at {alone_low}"
@@ -161,6 +163,9 @@ fn a_soft_block_falls_as_if_the_ground_were_absent_for_every_rule_but_normal() {
                 // (`docs/architecture.md`, "Soft bodies"): such a pair
                 // without response has no contacts, hence no events.
                 assert_eq!(started, 0, "{way:?} {rule:?}: {started} collision events");
+                // `stats()` counts the pair that lost its contacts.
+                let expected = usize::from(rule == CollisionRule::NoResponse);
+                assert_eq!(without_contacts, expected, "{way:?} {rule:?}: soft pairs without contacts");
             }
         }
     }

@@ -258,3 +258,86 @@ proptest::proptest! {
         }
     }
 }
+
+/// A world with soft bodies, one of them cut, saved with its rule set and
+/// loaded: the soft bodies and their pieces keep their rules and step as
+/// the world that was not saved (`docs/semantics.md`, "Soft bodies").
+#[test]
+fn a_world_with_soft_bodies_saved_with_its_rules_steps_as_before()
+-> Result<(), Box<dyn std::error::Error>> {
+    let mut world = PhysicsWorld::new();
+    let ground =
+        world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -0.5, 0.0)));
+    world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+    let bar = world.insert_soft_body(SoftBodyBuilder::cuboid(
+        Vector::new(0.0, 0.6, 0.0),
+        Vector::new(1.0, 0.25, 0.25),
+        6,
+        2,
+        2,
+    ));
+    let block = world.insert_soft_body(SoftBodyBuilder::cuboid(
+        Vector::new(3.0, 0.6, 0.0),
+        Vector::splat(0.4),
+        3,
+        3,
+        3,
+    ));
+    let (bar_root, block_root) = (
+        world.soft_bodies[bar].root_body(),
+        world.soft_bodies[block].root_body(),
+    );
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_specific(bar_root, ground, NoPair);
+    hooks.rules_mut().set_personal(block_root, NoResponse);
+    hooks.step(&mut world);
+    let blade = [
+        Vector::new(0.1, -10.0, -10.0),
+        Vector::new(0.1, 20.0, -10.0),
+        Vector::new(0.1, -10.0, 20.0),
+    ];
+    world
+        .cut_soft_body(bar, &blade)
+        .ok_or("the blade crosses the bar")?;
+    for _ in 0..3 {
+        hooks.step(&mut world);
+    }
+    hooks.restore_project_settings(&mut world.colliders);
+    let saved = serde_json::to_string(&(&world, hooks.rules()))?;
+    let (mut loaded_world, loaded_rules): (PhysicsWorld, CollisionRuleSet) =
+        serde_json::from_str(&saved)?;
+    let mut loaded_hooks = RuleHooks::new(loaded_rules);
+    for _ in 0..40 {
+        hooks.step(&mut world);
+        loaded_hooks.step(&mut loaded_world);
+    }
+    let particles = |world: &PhysicsWorld| -> Vec<u32> {
+        world
+            .soft_bodies
+            .iter()
+            .flat_map(|(_, b)| b.particle_positions().collect::<Vec<_>>())
+            .flat_map(|p| p.to_array())
+            .map(f32::to_bits)
+            .collect()
+    };
+    assert_eq!(
+        world.soft_bodies.len(),
+        3,
+        "the bar's two pieces and the block"
+    );
+    assert!(
+        particles(&loaded_world) == particles(&world),
+        "the loaded soft bodies move otherwise"
+    );
+    for (_, body) in loaded_world.soft_bodies.iter() {
+        let lowest = body
+            .particle_positions()
+            .map(|p| p.y)
+            .fold(f32::MAX, f32::min);
+        assert!(
+            lowest < -1.0,
+            "every soft body falls through the ground: lowest at {lowest}"
+        );
+    }
+    Ok(())
+}

@@ -19,6 +19,7 @@ use hashbrown::HashSet;
 
 use super::super::rapier::prelude::*;
 
+use super::super::Node;
 use super::{PlanCause, RuleHooks};
 
 /// What the hooks know of the world's soft bodies.
@@ -127,7 +128,7 @@ impl RuleHooks {
             let root = body.root_body();
             // Only roots the rules name: a link alone would have the hooks
             // watch a world without rules.
-            if !rules.holds_rules_about(root) {
+            if !rules.holds_rules_about(Node::Body(root)) {
                 continue;
             }
             for (_, cluster) in body.live_clusters() {

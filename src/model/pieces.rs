@@ -23,10 +23,7 @@ impl CollisionRuleSet {
             given = true;
         }
         if self.is_named(from) {
-            let holders: Vec<(Node, CollisionRule)> = self
-                .nodes()
-                .filter_map(|n| Some((n, *self.record(n)?.specific.get(&from)?)))
-                .collect();
+            let holders: Vec<(Node, CollisionRule)> = self.entries_about(from).collect();
             for (holder, rule) in holders {
                 self.set_specific(holder, to, rule);
             }
@@ -36,12 +33,5 @@ impl CollisionRuleSet {
             given |= self.set_parent(piece, parent).is_ok();
         }
         given
-    }
-
-    /// Whether the rules say anything of `body`: a record, an entry about
-    /// it, or a link of the parent map.
-    pub(crate) fn holds_rules_about(&self, body: RigidBodyHandle) -> bool {
-        let node = Node::Body(body);
-        self.record(node).is_some_and(|r| !r.is_empty()) || self.is_named(node) || self.in_hierarchy(body)
     }
 }

@@ -196,6 +196,21 @@ impl CollisionRuleSet {
         self.named.contains_key(&node)
     }
 
+    /// Whether the rules say anything of `node`: a record with rules, an
+    /// entry about it, or a link of the parent map.
+    pub(crate) fn holds_rules_about(&self, node: Node) -> bool {
+        self.record(node).is_some_and(|r| !r.is_empty())
+            || self.is_named(node)
+            || matches!(node, Node::Body(body) if self.in_hierarchy(body))
+    }
+
+    /// The nodes whose records hold an entry about `node`, with its rule
+    /// (a walk of the records: for removals and splits, not per step).
+    pub(crate) fn entries_about(&self, node: Node) -> impl Iterator<Item = (Node, CollisionRule)> + '_ {
+        self.nodes()
+            .filter_map(move |n| Some((n, *self.record(n)?.specific.get(&node)?)))
+    }
+
     pub(crate) fn named_nodes(&self) -> impl Iterator<Item = &Node> + '_ {
         self.named.keys()
     }

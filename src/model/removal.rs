@@ -37,20 +37,12 @@ impl CollisionRuleSet {
         // Only a node the rules held is remembered as removed: whether an
         // edit through a handle is refused must not depend on which
         // objects the hooks happened to watch.
-        let held = self.record(node).is_some_and(|r| !r.is_empty())
-            || self.named.contains_key(&node)
-            || matches!(node, Node::Body(body) if self.in_hierarchy(body));
+        let held = self.holds_rules_about(node);
         self.detach(node);
         if self.named.remove(&node).is_some() {
             // The nodes holding an entry about it change their pairs: logged,
             // as an edit of theirs would be.
-            let holders: Vec<Node> = self
-                .nodes()
-                .filter(|&n| {
-                    self.record(n)
-                        .is_some_and(|r| r.specific.contains_key(&node))
-                })
-                .collect();
+            let holders: Vec<Node> = self.entries_about(node).map(|(n, _)| n).collect();
             for record in self.records.live_mut() {
                 record.specific.remove(&node);
             }

@@ -57,12 +57,7 @@ fn drop_on_cloth(
     for _ in 0..STEPS {
         hooks.step(&mut world);
     }
-    let position = world.bodies[body].position();
-    let pose = position
-        .translation
-        .to_array()
-        .into_iter()
-        .chain(position.rotation.to_array());
+    let pose = crate::dim3::pose_bits(world.bodies[body].position());
     let particles = if cloth {
         world.soft_bodies[sheet]
             .particle_positions()
@@ -72,7 +67,7 @@ fn drop_on_cloth(
     } else {
         Vec::new()
     };
-    (pose.map(f32::to_bits).collect(), particles)
+    (pose, particles)
 }
 
 #[test]

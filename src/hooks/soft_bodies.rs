@@ -68,7 +68,18 @@ impl RuleHooks {
     ///     assert!(lowest < -1.0, "each piece falls through the ground: lowest particle at {lowest}");
     /// }
     /// ```
+    #[inline]
     pub fn follow_soft_bodies(&mut self, soft_bodies: &SoftBodySet, bodies: &RigidBodySet) {
+        // A world that never had soft bodies: two compares a step.
+        if soft_bodies.is_empty() && !self.soft.present {
+            return;
+        }
+        self.follow_soft_body_set(soft_bodies, bodies);
+    }
+
+    /// [`follow_soft_bodies`](Self::follow_soft_bodies) where the world
+    /// holds, or held, soft bodies.
+    fn follow_soft_body_set(&mut self, soft_bodies: &SoftBodySet, bodies: &RigidBodySet) {
         let present = !soft_bodies.is_empty();
         if present != self.soft.present {
             self.soft.present = present;

@@ -6,6 +6,7 @@ use super::super::rapier::prelude::*;
 
 use super::{PairKey, RuleHooks};
 use super::super::Node;
+use super::super::model::CollidersUnder;
 
 /// Recalculation.
 impl RuleHooks {
@@ -15,7 +16,7 @@ impl RuleHooks {
         node: Node,
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
-    ) -> Vec<ColliderHandle> {
+    ) -> CollidersUnder {
         self.decide.rules.colliders_under(node, bodies, colliders)
     }
 

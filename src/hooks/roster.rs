@@ -249,7 +249,12 @@ impl Roster {
                 look.project_changed.push(handle);
             }
             let body = collider.parent();
-            let is_dynamic = dynamic_body(bodies, body);
+            // A watched body's type was read by the body loop above: its
+            // record answers without a second visit to Rapier's body.
+            let is_dynamic = match body.and_then(|b| self.bodies.get(b)) {
+                Some(known_body) => known_body.dynamic,
+                None => dynamic_body(bodies, body),
+            };
             if known.body != body {
                 recheck.extend(known.body);
                 look.changed.push(Node::Collider(handle));

@@ -52,4 +52,5 @@ pub use rule_set::CollisionRuleSet;
 pub use snapshot::{LoadError, SavedRuleSet};
 pub(crate) use body_kinds::{BodyKinds, dynamic_body, is_dynamic, soft_rigid};
 pub(crate) use node::HandleMap;
+pub(crate) use node_rules::CollidersUnder;
 pub(crate) use records::Record;

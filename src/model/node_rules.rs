@@ -2,10 +2,15 @@
 //! sharing: the verbs that edit them, and the walks down from a node.
 
 use super::super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodyHandle, RigidBodySet};
+use smallvec::SmallVec;
 
 use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
 
 /// The verbs on each node's rules.
+/// The colliders under a node, inline up to four (see
+/// [`CollisionRuleSet::colliders_under`]).
+pub(crate) type CollidersUnder = SmallVec<[ColliderHandle; 4]>;
+
 impl CollisionRuleSet {
     /// Puts `node` in `group` (`None`: no explicit group; the node then takes
     /// the nearest explicit group up its chain, or its body's default group).
@@ -209,37 +214,37 @@ impl CollisionRuleSet {
     }
 
     /// `node` itself if it is a collider in the set, and every collider
-    /// below it: the colliders whose chains hold `node`.
+    /// below it: the colliders whose chains hold `node`. Inline for the
+    /// common sizes (a collider, a body's few colliders): the planner asks
+    /// this of every node a step's changes touch.
     pub(crate) fn colliders_under(
         &self,
         node: Node,
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
-    ) -> Vec<ColliderHandle> {
+    ) -> CollidersUnder {
         let in_world = |c: &&ColliderHandle| colliders.contains(**c);
-        if let Node::Body(root) = node {
+        match node {
+            Node::Collider(c) => {
+                let mut one = CollidersUnder::new();
+                one.extend(colliders.contains(c).then_some(c));
+                one
+            }
             // No body below it in the parent map (the common case): its
             // own colliders, without a walk of the parent map.
-            if !self.hierarchy.is_parent(root) {
-                return bodies.get(root).map_or_else(Vec::new, |body| {
-                    body.colliders().iter().filter(in_world).copied().collect()
-                });
-            }
+            Node::Body(root) if !self.hierarchy.is_parent(root) => bodies
+                .get(root)
+                .map(|body| body.colliders().iter().filter(in_world).copied().collect())
+                .unwrap_or_default(),
+            Node::Body(_) => self
+                .descendants(node, bodies, colliders)
+                .into_iter()
+                .filter_map(|n| match n {
+                    Node::Collider(c) => Some(c),
+                    Node::Body(_) => None,
+                })
+                .collect(),
         }
-        let mut below: Vec<ColliderHandle> = self
-            .descendants(node, bodies, colliders)
-            .into_iter()
-            .filter_map(|n| match n {
-                Node::Collider(c) => Some(c),
-                Node::Body(_) => None,
-            })
-            .collect();
-        if let Node::Collider(c) = node {
-            if colliders.contains(c) {
-                below.push(c);
-            }
-        }
-        below
     }
 
     /// The nodes below `node`: for a body, its colliders and every body below

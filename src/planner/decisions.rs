@@ -19,6 +19,7 @@ use super::carriers::side_cost;
 use super::class::Class;
 use super::collider_plan::ColliderPlan;
 use super::plan::{Request, ordered};
+use super::super::model::CollidersUnder;
 use super::super::{CollisionRule, Node};
 
 /// How one specific entry is decided.
@@ -131,7 +132,7 @@ struct Undone {
     /// 0 for `NoPair`, 1 for `NoResponse`, else no bit.
     kind: Option<usize>,
     /// The colliders under each node.
-    under: (Vec<ColliderHandle>, Vec<ColliderHandle>),
+    under: (CollidersUnder, CollidersUnder),
 }
 
 /// How many nodes are on each bit of each kind (`[kind][bit]`).

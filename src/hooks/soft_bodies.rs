@@ -117,12 +117,17 @@ impl RuleHooks {
                     self.decide.rules.give_piece(from.root_body(), body.root_body());
                     // The piece's colliders are Rapier's copies of the
                     // source's, with what the crate wrote on them: they keep
-                    // the project's settings of the source's colliders.
+                    // the project's settings of the source's colliders, and
+                    // are planned before the next step, as a full pass would
+                    // (the rules the source's colliders held as colliders
+                    // are not the piece's: what the crate wrote for them
+                    // goes).
                     let originals: Vec<ColliderHandle> = from.meshes().map(|m| m.collider()).collect();
                     for (i, mesh) in body.meshes().enumerate() {
                         let original = originals.get(i).or(originals.first());
                         if let Some(&written) = original.and_then(|&c| self.planned.written.get(c)) {
                             self.planned.written.insert_evicting(mesh.collider(), written);
+                            self.queued.candidates.push(mesh.collider());
                         }
                     }
                 }

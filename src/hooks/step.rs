@@ -193,6 +193,11 @@ impl RuleHooks {
     /// [`step`](Self::step); call it after [`prepare`](Self::prepare) when
     /// stepping a bare pipeline.
     pub fn wake_edited(&mut self, islands: &mut IslandManager, bodies: &mut RigidBodySet) {
+        // In the node order, whichever way the plan came to them: the order
+        // of Rapier's wake-ups is the order of its islands, and so of its
+        // solver.
+        self.queued.to_wake.sort_unstable_by_key(|b| b.into_raw_parts());
+        self.queued.to_wake.dedup();
         for body in self.queued.to_wake.drain(..) {
             if bodies.contains(body) {
                 islands.wake_up(bodies, body, true);

@@ -55,24 +55,27 @@ impl RuleHooks {
             })
             .collect();
         // Colliders planned before and not now go back to Rapier's defaults.
+        let mut writes: Vec<(ColliderHandle, ColliderPlan)> = Vec::new();
+        let mut unplanned = Vec::new();
         for &handle in &reached {
             if plan.colliders.get(handle).is_none() {
                 if let Some(collider) = colliders.get(handle) {
                     let dynamic = dynamic_body(bodies, collider.parent());
-                    self.configure(bodies, colliders, handle, ColliderPlan::unreached(dynamic));
+                    writes.push((handle, ColliderPlan::unreached(dynamic)));
                 }
-                self.planned.plan.colliders.remove(handle);
+                unplanned.push(handle);
             }
         }
-        let mut entries: Vec<_> = plan.colliders.iter().map(|(h, e)| (h, *e)).collect();
-        entries.sort_unstable_by_key(|(h, _)| h.into_raw_parts());
-        self.stats.planned_colliders = entries.len();
+        let resets = writes.len();
+        writes.extend(plan.colliders.iter().map(|(h, e)| (h, *e)));
+        self.stats.planned_colliders = writes.len() - resets;
         self.stats.full_plan = Some(cause);
-        for &(handle, _) in &entries {
+        for &(handle, _) in &writes[resets..] {
             self.planned.roster.watch_collider(bodies, colliders, handle);
         }
-        for (handle, entry) in entries {
-            self.configure(bodies, colliders, handle, entry);
+        self.write_in_order(bodies, colliders, writes);
+        for handle in unplanned {
+            self.planned.plan.colliders.remove(handle);
         }
         self.planned.plan = plan;
         self.queued.replan = None;
@@ -117,11 +120,29 @@ impl RuleHooks {
         for &(handle, _) in &planned {
             self.planned.roster.watch_collider(bodies, colliders, handle);
         }
+        self.write_in_order(bodies, colliders, planned.clone());
         for (handle, entry) in planned {
-            self.configure(bodies, colliders, handle, entry);
             self.planned.plan.colliders.insert(handle, entry);
         }
         self.count_hooked();
+    }
+
+    /// Writes each collider's plan in the node order, whichever way the
+    /// plan came to them: Rapier lists the colliders it is told of in the
+    /// order they are touched, and that order decides how its broad phase
+    /// rebuilds its tree, the order of new pairs, and the solver's. A plan
+    /// of a few colliders and a whole plan that write the same settings
+    /// then leave Rapier in the same state, bit for bit.
+    fn write_in_order(
+        &mut self,
+        bodies: &RigidBodySet,
+        colliders: &mut ColliderSet,
+        mut writes: Vec<(ColliderHandle, ColliderPlan)>,
+    ) {
+        writes.sort_unstable_by_key(|(h, _)| h.into_raw_parts());
+        for (handle, entry) in writes {
+            self.configure(bodies, colliders, handle, entry);
+        }
     }
 
     pub(super) fn count_hooked(&mut self) {

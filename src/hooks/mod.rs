@@ -197,6 +197,10 @@ struct Queued {
     wake_colliders: Vec<ColliderHandle>,
     /// Colliders to plan again before the next step (a partial plan).
     candidates: Vec<ColliderHandle>,
+    /// A cut piece's colliders, with the project's settings of the source's
+    /// collider each copies: what they hold now is the crate's, as Rapier
+    /// copied it (see `RuleHooks::settle_pieces`).
+    pieces: Vec<(ColliderHandle, Settings)>,
     /// Something the whole plan depends on changed: plan again before the
     /// next step, for this reason.
     replan: Option<PlanCause>,
@@ -274,6 +278,7 @@ impl RuleHooks {
                 recalculate_all: false,
                 to_wake: Vec::new(),
                 wake_colliders: Vec::new(),
+                pieces: Vec::new(),
                 candidates: Vec::new(),
                 replan: Some(PlanCause::FirstStep),
                 regrouped: HashSet::new(),

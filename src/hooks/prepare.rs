@@ -101,6 +101,7 @@ impl RuleHooks {
         graph: Option<&NarrowPhase>,
     ) {
         self.open_step();
+        self.settle_pieces(colliders);
         let full = self.full_pass();
         if self.planned.exhaustive {
             self.queued.replan.get_or_insert(PlanCause::HookSettings);

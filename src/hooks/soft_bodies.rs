@@ -15,11 +15,12 @@
 //! and a pass over the soft bodies and their clusters (not their particles)
 //! when one changes.
 
-use hashbrown::HashSet;
+use hashbrown::HashMap;
 
 use super::super::rapier::prelude::*;
 
 use super::super::Node;
+use super::super::world::{Settings, Written};
 use super::{PlanCause, RuleHooks};
 
 /// What the hooks know of the world's soft bodies.
@@ -31,8 +32,11 @@ pub(super) struct SoftBodies {
     /// How many soft bodies, and (while there are some) rigid bodies, the
     /// sets had at the last look.
     counts: (usize, usize),
-    /// The soft bodies seen so far.
-    known: HashSet<SoftBodyHandle>,
+    /// The soft bodies seen so far, each with its root body as last seen:
+    /// a cut may give the handle's side a new root and the piece the old one
+    /// (rapier 0.36.1 does), so the rules are found on the root the hooks
+    /// knew, not on either side's root now.
+    known: HashMap<SoftBodyHandle, RigidBodyHandle>,
 }
 
 impl RuleHooks {
@@ -83,8 +87,14 @@ impl RuleHooks {
         let present = !soft_bodies.is_empty();
         if present != self.soft.present {
             self.soft.present = present;
-            // `NoResponse` moves between Rapier's groups and the hook.
-            if self.planned.roster.collider_count() > 0 || self.planned.plan.full.is_some() {
+            // `NoResponse` moves between Rapier's groups and the hook, also
+            // for a group rule whose groups have no member the hooks watch
+            // (a rule of the default groups reaches every collider).
+            let rules = &self.decide.rules;
+            let any_rule = rules.groups.iter().next().is_some()
+                || rules.default_rule().is_decided()
+                || !rules.ruled_nodes().is_empty();
+            if self.planned.roster.collider_count() > 0 || self.planned.plan.full.is_some() || any_rule {
                 self.queued.replan.get_or_insert(PlanCause::SoftBodies);
             }
         }
@@ -95,11 +105,11 @@ impl RuleHooks {
             return;
         }
         self.soft.counts = counts;
-        self.soft.known.retain(|&h| soft_bodies.contains(h));
+        self.soft.known.retain(|&h, _| soft_bodies.contains(h));
         let mut new: Vec<SoftBodyHandle> = soft_bodies
             .iter()
             .map(|(h, _)| h)
-            .filter(|h| !self.soft.known.contains(h))
+            .filter(|h| !self.soft.known.contains_key(h))
             .collect();
         new.sort_unstable_by_key(|h| h.into_raw_parts());
         // A piece torn off a piece in the same step takes its rules once its
@@ -109,34 +119,31 @@ impl RuleHooks {
             new.retain(|&handle| {
                 let body = &soft_bodies[handle];
                 let source = body.origin().filter(|&o| soft_bodies.contains(o));
-                if source.is_some_and(|s| !self.soft.known.contains(&s)) {
+                let Some(source) = source else {
+                    self.soft.known.insert(handle, body.root_body());
+                    return false;
+                };
+                let Some(&held) = self.soft.known.get(&source) else {
                     return true;
-                }
-                if let Some(source) = source {
-                    let from = &soft_bodies[source];
-                    self.decide.rules.give_piece(from.root_body(), body.root_body());
-                    // The piece's colliders are Rapier's copies of the
-                    // source's, with what the crate wrote on them: they keep
-                    // the project's settings of the source's colliders, and
-                    // are planned before the next step, as a full pass would
-                    // (the rules the source's colliders held as colliders
-                    // are not the piece's: what the crate wrote for them
-                    // goes).
-                    let originals: Vec<ColliderHandle> = from.meshes().map(|m| m.collider()).collect();
-                    for (i, mesh) in body.meshes().enumerate() {
-                        let original = originals.get(i).or(originals.first());
-                        if let Some(&written) = original.and_then(|&c| self.planned.written.get(c)) {
-                            self.planned.written.insert_evicting(mesh.collider(), written);
-                            self.queued.candidates.push(mesh.collider());
-                        }
+                };
+                let from = &soft_bodies[source];
+                // The rules are on the root the source had: the roots of both
+                // sides now that are not it take them.
+                for root in [from.root_body(), body.root_body()] {
+                    if root != held {
+                        self.decide.rules.give_piece(held, root);
                     }
                 }
-                self.soft.known.insert(handle);
+                self.soft.known.insert(source, from.root_body());
+                self.soft.known.insert(handle, body.root_body());
+                self.copy_settings_across_cut(from, body);
                 false
             });
             if new.len() == before {
                 // Sources no longer in the set: the pieces keep no rules.
-                self.soft.known.extend(new.drain(..));
+                for handle in new.drain(..) {
+                    self.soft.known.insert(handle, soft_bodies[handle].root_body());
+                }
             }
         }
         let rules = &mut self.decide.rules;
@@ -154,6 +161,56 @@ impl RuleHooks {
                     // through it.
                     let _ = rules.set_parent(proxy, root);
                 }
+            }
+        }
+    }
+
+    /// A cut gives one side the source's colliders and the other Rapier's
+    /// copies of them (the source's side may keep the copies), with what the
+    /// crate had written on them when the cut was asked for: each copy keeps
+    /// the project's settings of the collider it copies (mesh by mesh), and
+    /// is planned before the next step, as a full pass would. Rules the
+    /// source's colliders held as colliders stay with those colliders.
+    fn copy_settings_across_cut(&mut self, from: &SoftBody, piece: &SoftBody) {
+        let sides: [Vec<ColliderHandle>; 2] = [
+            from.meshes().map(|m| m.collider()).collect(),
+            piece.meshes().map(|m| m.collider()).collect(),
+        ];
+        // The project's settings the crate knows of a collider (a copy made
+        // by an earlier cut of this step included).
+        let own_of = |c: ColliderHandle, pieces: &[(ColliderHandle, Settings)]| {
+            self.planned
+                .written
+                .get(c)
+                .map(|w| w.own)
+                .or_else(|| pieces.iter().find(|p| p.0 == c).map(|p| p.1))
+        };
+        for (side, other) in [(0, 1), (1, 0)] {
+            for (i, &copy) in sides[side].iter().enumerate() {
+                if own_of(copy, &self.queued.pieces).is_some() {
+                    continue;
+                }
+                let original = sides[other].get(i).or(sides[other].first());
+                if let Some(own) = original.and_then(|&c| own_of(c, &self.queued.pieces)) {
+                    self.queued.pieces.push((copy, own));
+                    self.queued.candidates.push(copy);
+                }
+            }
+        }
+    }
+
+    /// Before a plan: a cut piece's colliders hold what Rapier copied from
+    /// the source's when the cut was asked for, which is what the crate had
+    /// written then, not what it wrote since (a plan between the cut and
+    /// the step Rapier makes the piece in). That is taken as the crate's
+    /// write, so that the plan gives the piece's colliders the project's
+    /// settings of the source's with the plan on top, never the crate's old
+    /// bits as if they were the project's.
+    pub(super) fn settle_pieces(&mut self, colliders: &ColliderSet) {
+        for (handle, own) in std::mem::take(&mut self.queued.pieces) {
+            if let Some(collider) = colliders.get(handle) {
+                let wrote = Settings::of(collider);
+                self.planned.written.insert_evicting(handle, Written { own, wrote });
             }
         }
     }

@@ -23,7 +23,14 @@ impl RuleHooks {
     ) {
         let pinned = self.pinned();
         let ruled = self.decide.rules.ruled_nodes();
-        let reached: Vec<ColliderHandle> = self.planned.roster.colliders().to_vec();
+        // The watched colliders, and those waiting for a plan of their own
+        // (a cut piece's copies of its source's colliders, which carry what
+        // the crate wrote on the source).
+        let mut reached: Vec<ColliderHandle> = self.planned.roster.colliders().to_vec();
+        let waiting = self.queued.candidates.iter().copied();
+        reached.extend(waiting.filter(|&c| colliders.contains(c)));
+        reached.sort_unstable_by_key(|h| h.into_raw_parts());
+        reached.dedup();
         let own = |h: ColliderHandle, c: &Collider| self.own_settings(h, c);
         let pairs_of = pairs_in(graph);
         let request = Request {

@@ -121,6 +121,8 @@ impl RuleHooks {
             soft_bodies: self.soft.present,
         };
         let Some(planned) = planner::replan_some(&mut self.planned.plan, &request, &handles) else {
+            // The whole plan plans the candidates too (see `apply_plan`).
+            self.queued.candidates = handles;
             return self.apply_plan(bodies, colliders, graph, PlanCause::NewClass);
         };
         self.stats.planned_colliders = planned.len();

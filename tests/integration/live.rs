@@ -439,3 +439,23 @@ fn the_first_soft_body_plans_a_default_group_rule_again() {
     ];
     planned_alike(&cubes, &edits, |_| Ok(()));
 }
+
+/// Found by `the_upkeep_sees_what_a_full_pass_sees`: a cut piece's copy of
+/// a surface collider waits for a plan, and the plan of a few colliders
+/// that gave way to a whole plan (a parent edit in the same step) dropped
+/// it; the whole plan plans the colliders waiting too.
+#[test]
+fn a_whole_plan_in_place_of_a_partial_one_plans_the_colliders_waiting() {
+    use super::world::Edit::*;
+    let cubes = [(0.0, 0.4, 0); 6];
+    let edits = [
+        Personal(46, CollisionRule::Normal),
+        AddSoft(0.0, 0.5),
+        Personal(15, CollisionRule::NoPair),
+        Step(1),
+        AddBody(0),
+        Parent(13, 0),
+        CutSoft(0),
+    ];
+    planned_alike(&cubes, &edits, |_| Ok(()));
+}

@@ -197,10 +197,11 @@ struct Queued {
     wake_colliders: Vec<ColliderHandle>,
     /// Colliders to plan again before the next step (a partial plan).
     candidates: Vec<ColliderHandle>,
-    /// A cut piece's colliders, with the project's settings of the source's
-    /// collider each copies: what they hold now is the crate's, as Rapier
-    /// copied it (see `RuleHooks::settle_pieces`).
-    pieces: Vec<(ColliderHandle, Settings)>,
+    /// Rapier's copies of a cut soft body's colliders, each with the
+    /// collider it copies: what a copy holds now is the crate's write and
+    /// the project's settings of the original, as Rapier copied them (see
+    /// `RuleHooks::settle_pieces`).
+    pieces: Vec<(ColliderHandle, ColliderHandle)>,
     /// Something the whole plan depends on changed: plan again before the
     /// next step, for this reason.
     replan: Option<PlanCause>,

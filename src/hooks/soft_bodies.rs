@@ -176,23 +176,19 @@ impl RuleHooks {
             from.meshes().map(|m| m.collider()).collect(),
             piece.meshes().map(|m| m.collider()).collect(),
         ];
-        // The project's settings the crate knows of a collider (a copy made
-        // by an earlier cut of this step included).
-        let own_of = |c: ColliderHandle, pieces: &[(ColliderHandle, Settings)]| {
-            self.planned
-                .written
-                .get(c)
-                .map(|w| w.own)
-                .or_else(|| pieces.iter().find(|p| p.0 == c).map(|p| p.1))
+        // Whether the crate knows the project's settings of a collider (a
+        // copy made by an earlier cut of this step included).
+        let known = |c: ColliderHandle, pieces: &[(ColliderHandle, ColliderHandle)]| {
+            self.planned.written.get(c).is_some() || pieces.iter().any(|p| p.0 == c)
         };
         for (side, other) in [(0, 1), (1, 0)] {
             for (i, &copy) in sides[side].iter().enumerate() {
-                if own_of(copy, &self.queued.pieces).is_some() {
+                if known(copy, &self.queued.pieces) {
                     continue;
                 }
                 let original = sides[other].get(i).or(sides[other].first());
-                if let Some(own) = original.and_then(|&c| own_of(c, &self.queued.pieces)) {
-                    self.queued.pieces.push((copy, own));
+                if let Some(&original) = original.filter(|&&c| known(c, &self.queued.pieces)) {
+                    self.queued.pieces.push((copy, original));
                     self.queued.candidates.push(copy);
                 }
             }
@@ -207,10 +203,19 @@ impl RuleHooks {
     /// settings of the source's with the plan on top, never the crate's old
     /// bits as if they were the project's.
     pub(super) fn settle_pieces(&mut self, colliders: &ColliderSet) {
-        for (handle, own) in std::mem::take(&mut self.queued.pieces) {
-            if let Some(collider) = colliders.get(handle) {
+        // In the order of the cuts: a copy of a copy finds its original's
+        // settings settled.
+        for (copy, original) in std::mem::take(&mut self.queued.pieces) {
+            let own = match colliders.get(original) {
+                Some(c) => self.own_settings(original, c),
+                None => match self.planned.written.get(original) {
+                    Some(written) => written.own,
+                    None => continue,
+                },
+            };
+            if let Some(collider) = colliders.get(copy) {
                 let wrote = Settings::of(collider);
-                self.planned.written.insert_evicting(handle, Written { own, wrote });
+                self.planned.written.insert_evicting(copy, Written { own, wrote });
             }
         }
     }

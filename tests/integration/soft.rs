@@ -5,7 +5,7 @@
 
 use super::rapier::prelude::*;
 use super::rules::{CollisionRule, RuleHooks};
-use super::{at, blade_at_x, cube, slab, soft_bar, soft_block};
+use super::{at, blade_at_x, cube, pose_bits, slab, soft_bar, soft_block};
 
 const STEPS: usize = 90;
 
@@ -498,4 +498,45 @@ fn explain_says_a_soft_rigid_pair_without_response_has_no_contacts() {
     assert!(why.without_contacts, "{why:?}");
     let why = hooks.rules().explain(&world.bodies, &world.colliders, theirs, mine);
     assert!(!why.without_contacts, "two soft surfaces keep their contacts: {why:?}");
+}
+
+/// A rigid collider moved onto a soft body's cluster proxy in the same
+/// step as another collider is hung on that proxy: with no rules, and
+/// with a rule elsewhere in the world, the hooks step as plain Rapier, bit
+/// for bit.
+#[test]
+fn colliders_moved_and_hung_on_a_proxy_in_one_step_move_as_in_plain_rapier() {
+    for rule in [false, true] {
+        let scene = |hooked: bool| {
+            let (mut world, floor) = on_ground();
+            let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
+            let loose = world.insert_body(RigidBodyBuilder::dynamic().translation(at(2.0, 1.0)));
+            let moved = world.insert_collider(ColliderBuilder::ball(0.2), Some(loose));
+            let mut hooks = RuleHooks::default();
+            if rule {
+                let far = world.insert_body(RigidBodyBuilder::dynamic().translation(at(50.0, 1.0)));
+                world.insert_collider(ColliderBuilder::ball(0.2), Some(far));
+                hooks.rules_mut().set_specific(far, floor, CollisionRule::NoPair);
+            }
+            let mut step = |world: &mut PhysicsWorld| {
+                if hooked { hooks.step(world) } else { world.step() }
+            };
+            step(&mut world);
+            let cluster = world.add_soft_body_cluster(block, &[0, 1, 2, 3]).expect("a cluster of four particles");
+            let proxy = world.soft_bodies[block].cluster_proxy(cluster).expect("the cluster's proxy");
+            for _ in 0..5 {
+                step(&mut world);
+            }
+            let w = &mut world;
+            w.colliders.set_parent(moved, Some(proxy), &mut w.bodies);
+            world.insert_collider(ColliderBuilder::ball(0.2).translation(at(0.0, 0.3)), Some(proxy));
+            for _ in 0..STEPS {
+                step(&mut world);
+            }
+            let mut poses: Vec<Vec<u32>> = world.soft_bodies.iter().map(|(h, _)| particles(&world, h)).collect();
+            poses.extend(world.bodies.iter().map(|(_, b)| pose_bits(b.position())));
+            poses
+        };
+        assert!(scene(true) == scene(false), "with a rule elsewhere: {rule}: the world moves otherwise with the hooks");
+    }
 }

@@ -186,8 +186,11 @@ impl Run {
     }
 
     /// Names the pieces of cuts and tears (strain tears happen in Rapier's
-    /// step) in the edits. Rapier copies the source's colliders, the
-    /// project's settings on them included.
+    /// step) in the edits. A cut leaves the source's colliders on one side
+    /// and Rapier's copies of them, the project's settings on them
+    /// included, on the other (the source's side may get the copies, and
+    /// the piece the source's root): each copy has the project's settings
+    /// of the collider it copies, mesh by mesh.
     fn adopt_pieces(&mut self) {
         let mut pieces: Vec<SoftBodyHandle> = self
             .world
@@ -199,15 +202,28 @@ impl Run {
         pieces.sort_unstable_by_key(|h| h.into_raw_parts());
         for piece in pieces {
             let bodies = &self.world.soft_bodies;
-            let source = bodies[piece].origin().and_then(|o| bodies.get(o));
-            let project = source
-                .and_then(|s| s.meshes().next())
-                .and_then(|m| self.project.get(&m.collider()).copied());
-            let copies: Vec<ColliderHandle> = bodies[piece].meshes().map(|m| m.collider()).collect();
+            let meshes = |h: SoftBodyHandle| -> Vec<ColliderHandle> {
+                bodies.get(h).map_or_else(Vec::new, |b| b.meshes().map(|m| m.collider()).collect())
+            };
+            let source = bodies[piece].origin().filter(|&o| bodies.contains(o));
+            let sides = [source.map_or_else(Vec::new, meshes), meshes(piece)];
+            let source_root = source.map(|s| bodies[s].root_body());
             self.adopt_soft(piece);
-            for copy in copies {
-                if let Some(project) = project {
-                    self.project.insert(copy, project);
+            if let Some(root) = source_root.filter(|r| !self.bodies.contains(r)) {
+                self.bodies.push(root);
+            }
+            for (side, other) in [(0, 1), (1, 0)] {
+                for (i, &copy) in sides[side].iter().enumerate() {
+                    if !self.colliders.contains(&copy) {
+                        self.colliders.push(copy);
+                    }
+                    if self.project.contains_key(&copy) {
+                        continue;
+                    }
+                    let original = sides[other].get(i).or(sides[other].first());
+                    if let Some(&project) = original.and_then(|c| self.project.get(c)) {
+                        self.project.insert(copy, project);
+                    }
                 }
             }
         }
@@ -325,13 +341,10 @@ impl Run {
             Edit::MoveCollider(c, b) => {
                 let (handle, body) = (self.colliders[c % self.colliders.len()], self.body(b));
                 let world = &mut self.world;
-                // A soft body's surface stays bound to its cluster, and a
-                // collider moved onto a proxy is the known gap of
-                // `docs/semantics.md`, "Soft bodies": colliders move
-                // between rigid bodies only.
+                // A soft body's surface stays bound to its cluster; rigid
+                // colliders move between rigid bodies and proxies.
                 let bound = world.colliders.get(handle).is_some_and(|c| c.deformable_mesh_ref().is_some());
-                let onto_soft = world.bodies.get(body).is_some_and(|b| b.is_soft_frame());
-                if world.colliders.contains(handle) && world.bodies.contains(body) && !bound && !onto_soft {
+                if world.colliders.contains(handle) && world.bodies.contains(body) && !bound {
                     world
                         .colliders
                         .set_parent(handle, Some(body), &mut world.bodies);

@@ -523,7 +523,8 @@ impl Run {
         known
     }
 
-    /// Every body's position, bit for bit, in handle order.
+    /// Every body's position, bit for bit, in handle order, then every
+    /// soft body's particles.
     pub fn poses(&self) -> Vec<Vec<u32>> {
         let mut poses: Vec<_> = self
             .world
@@ -535,7 +536,21 @@ impl Run {
             })
             .collect();
         poses.sort_by_key(|p| p.0);
-        poses.into_iter().map(|p| p.1).collect()
+        // And every soft body's particles, in handle order.
+        let mut softs: Vec<_> = self
+            .world
+            .soft_bodies
+            .iter()
+            .map(|(handle, soft)| {
+                let bits = soft
+                    .particle_positions()
+                    .flat_map(|p| p.to_array().map(f32::to_bits))
+                    .collect::<Vec<u32>>();
+                (handle.into_raw_parts(), bits)
+            })
+            .collect();
+        softs.sort_by_key(|s| s.0);
+        poses.into_iter().map(|p| p.1).chain(softs.into_iter().map(|s| s.1)).collect()
     }
 
     /// The pairs with contacts, sorted.

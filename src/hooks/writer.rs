@@ -80,7 +80,7 @@ impl RuleHooks {
         for &(handle, _) in &writes[resets..] {
             self.planned.roster.watch_collider(bodies, colliders, handle);
         }
-        self.write_in_order(bodies, colliders, writes);
+        self.write_in_order(bodies, colliders, &mut writes);
         for handle in unplanned {
             self.planned.plan.colliders.remove(handle);
         }
@@ -129,7 +129,8 @@ impl RuleHooks {
         for &(handle, _) in &planned {
             self.planned.roster.watch_collider(bodies, colliders, handle);
         }
-        self.write_in_order(bodies, colliders, planned.clone());
+        let mut planned = planned;
+        self.write_in_order(bodies, colliders, &mut planned);
         for (handle, entry) in planned {
             self.planned.plan.colliders.insert(handle, entry);
         }
@@ -146,10 +147,10 @@ impl RuleHooks {
         &mut self,
         bodies: &RigidBodySet,
         colliders: &mut ColliderSet,
-        mut writes: Vec<(ColliderHandle, ColliderPlan)>,
+        writes: &mut [(ColliderHandle, ColliderPlan)],
     ) {
         writes.sort_unstable_by_key(|(h, _)| h.into_raw_parts());
-        for (handle, entry) in writes {
+        for &(handle, entry) in writes.iter() {
             self.configure(bodies, colliders, handle, entry);
         }
     }

@@ -20,6 +20,7 @@ use hashbrown::HashMap;
 use super::super::rapier::prelude::*;
 
 use super::super::Node;
+use super::super::model::CollidersUnder;
 use super::super::world::{Settings, Written};
 use super::{PlanCause, RuleHooks};
 
@@ -32,11 +33,30 @@ pub(super) struct SoftBodies {
     /// How many soft bodies, and (while there are some) rigid bodies, the
     /// sets had at the last look.
     counts: (usize, usize),
-    /// The soft bodies seen so far, each with its root body as last seen:
-    /// a cut may give the handle's side a new root and the piece the old one
-    /// (rapier 0.36.1 does), so the rules are found on the root the hooks
-    /// knew, not on either side's root now.
-    known: HashMap<SoftBodyHandle, RigidBodyHandle>,
+    /// The soft bodies seen so far, each as last seen.
+    known: HashMap<SoftBodyHandle, Seen>,
+}
+
+/// A soft body as the hooks last saw it.
+#[derive(Debug, Clone)]
+struct Seen {
+    /// Its root body: a cut may give the handle's side a new root and the
+    /// piece the old one (rapier 0.36.1 does), so the rules are found on the
+    /// root the hooks knew, not on either side's root now.
+    root: RigidBodyHandle,
+    /// The colliders of its meshes: a cut copies them to the other side,
+    /// and the project may remove the originals before the hooks see the
+    /// cut (the copies still hold what the crate wrote on them).
+    meshes: CollidersUnder,
+}
+
+impl Seen {
+    fn of(body: &SoftBody) -> Seen {
+        Seen {
+            root: body.root_body(),
+            meshes: body.meshes().map(|m| m.collider()).collect(),
+        }
+    }
 }
 
 impl RuleHooks {
@@ -120,29 +140,29 @@ impl RuleHooks {
                 let body = &soft_bodies[handle];
                 let source = body.origin().filter(|&o| soft_bodies.contains(o));
                 let Some(source) = source else {
-                    self.soft.known.insert(handle, body.root_body());
+                    self.soft.known.insert(handle, Seen::of(body));
                     return false;
                 };
-                let Some(&held) = self.soft.known.get(&source) else {
+                let Some(held) = self.soft.known.get(&source).cloned() else {
                     return true;
                 };
                 let from = &soft_bodies[source];
                 // The rules are on the root the source had: the roots of both
                 // sides now that are not it take them.
                 for root in [from.root_body(), body.root_body()] {
-                    if root != held {
-                        self.decide.rules.give_piece(held, root);
+                    if root != held.root {
+                        self.decide.rules.give_piece(held.root, root);
                     }
                 }
-                self.soft.known.insert(source, from.root_body());
-                self.soft.known.insert(handle, body.root_body());
-                self.copy_settings_across_cut(from, body);
+                self.soft.known.insert(source, Seen::of(from));
+                self.soft.known.insert(handle, Seen::of(body));
+                self.copy_settings_across_cut(&held.meshes, from, body);
                 false
             });
             if new.len() == before {
                 // Sources no longer in the set: the pieces keep no rules.
                 for handle in new.drain(..) {
-                    self.soft.known.insert(handle, soft_bodies[handle].root_body());
+                    self.soft.known.insert(handle, Seen::of(&soft_bodies[handle]));
                 }
             }
         }
@@ -171,7 +191,9 @@ impl RuleHooks {
     /// the project's settings of the collider it copies (mesh by mesh), and
     /// is planned before the next step, as a full pass would. Rules the
     /// source's colliders held as colliders stay with those colliders.
-    fn copy_settings_across_cut(&mut self, from: &SoftBody, piece: &SoftBody) {
+    /// `seen` are the source's colliders before the cut: the original of a
+    /// copy whose side lost it since (the project removed it) is found there.
+    fn copy_settings_across_cut(&mut self, seen: &[ColliderHandle], from: &SoftBody, piece: &SoftBody) {
         let sides: [Vec<ColliderHandle>; 2] = [
             from.meshes().map(|m| m.collider()).collect(),
             piece.meshes().map(|m| m.collider()).collect(),
@@ -186,8 +208,13 @@ impl RuleHooks {
                 if known(copy, &self.queued.pieces) {
                     continue;
                 }
-                let original = sides[other].get(i).or(sides[other].first());
-                if let Some(&original) = original.filter(|&&c| known(c, &self.queued.pieces)) {
+                // Mesh by mesh where the sides still match, else the first.
+                let other = &sides[other];
+                let original = [other.get(i), seen.get(i), other.first(), seen.first()]
+                    .into_iter()
+                    .flatten()
+                    .find(|&&c| known(c, &self.queued.pieces));
+                if let Some(&original) = original {
                     self.queued.pieces.push((copy, original));
                     self.queued.candidates.push(copy);
                 }

@@ -21,7 +21,6 @@ use super::super::rapier::prelude::*;
 
 use super::super::Node;
 use super::super::model::CollidersUnder;
-use super::super::world::{Settings, Written};
 use super::{PlanCause, RuleHooks};
 
 /// What the hooks know of the world's soft bodies.
@@ -223,26 +222,23 @@ impl RuleHooks {
     }
 
     /// Before a plan: a cut piece's colliders hold what Rapier copied from
-    /// the source's when the cut was asked for, which is what the crate had
-    /// written then, not what it wrote since (a plan between the cut and
-    /// the step Rapier makes the piece in). That is taken as the crate's
-    /// write, so that the plan gives the piece's colliders the project's
-    /// settings of the source's with the plan on top, never the crate's old
+    /// the source's when it made them: what the crate wrote in its last plan
+    /// and the project's changes of the original made before the cut. The
+    /// copy takes the original's record of what the crate wrote and what
+    /// the project's settings were then, so that what differs on the copy
+    /// is the project's (a change before the cut is kept, one of the
+    /// original after it is not the copy's), and the plan gives the copy
+    /// the project's settings with the plan on top, never the crate's old
     /// bits as if they were the project's.
     pub(super) fn settle_pieces(&mut self, colliders: &ColliderSet) {
         // In the order of the cuts: a copy of a copy finds its original's
-        // settings settled.
+        // record settled.
         for (copy, original) in std::mem::take(&mut self.queued.pieces) {
-            let own = match colliders.get(original) {
-                Some(c) => self.own_settings(original, c),
-                None => match self.planned.written.get(original) {
-                    Some(written) => written.own,
-                    None => continue,
-                },
+            let Some(&written) = self.planned.written.get(original) else {
+                continue;
             };
-            if let Some(collider) = colliders.get(copy) {
-                let wrote = Settings::of(collider);
-                self.planned.written.insert_evicting(copy, Written { own, wrote });
+            if colliders.contains(copy) {
+                self.planned.written.insert_evicting(copy, written);
             }
         }
     }

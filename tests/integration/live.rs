@@ -4,8 +4,10 @@
 //! live pair names a removed collider, also with soft bodies added and cut.
 //! And the planner changes nothing a user can see: the same world stepped
 //! with the planner on and off, soft bodies added and cut included, has the
-//! same live pairs with the same rules, and the same touching pairs while
-//! the two worlds' poses agree (97% of the first thousand steps in 3D and
+//! same live pairs with the same rules (while the edits name the same
+//! objects in both: a soft body that moved differently in each may be cut
+//! differently), and the same touching pairs while the two worlds' poses
+//! agree (97% of the first thousand steps in 3D and
 //! 96% in 2D at the fixed seed: hooking every collider does not step bit
 //! for bit as Rapier's unhooked path). And the
 //! upkeep that looks only at what the rules reach, and plans only what each
@@ -106,9 +108,15 @@ proptest! {
         // With the planner off every collider is hooked, and Rapier's
         // hooked path need not reproduce its unhooked one to the last bit
         // (its contact recycling differs): the touching pairs are compared
-        // while the poses agree, the rules of the live pairs always.
-        let mut alike = true;
+        // while the poses agree, the rules of the live pairs while the
+        // edits name the same objects in both (a soft body that moved
+        // differently in each may be cut differently).
+        let (mut alike, mut named) = (true, true);
         in_lockstep(&mut on, &mut off, &edits, |on, off| {
+            named = named && on.names_alike(off);
+            if !named {
+                return Ok(());
+            }
             alike = alike && on.poses() == off.poses();
             if alike {
                 prop_assert_eq!(on.touching(), off.touching(), "touching pairs differ");
@@ -506,3 +514,4 @@ fn copies_of_a_collider_removed_after_the_cut_are_planned() {
     })
     .unwrap();
 }
+

@@ -540,3 +540,41 @@ fn colliders_moved_and_hung_on_a_proxy_in_one_step_move_as_in_plain_rapier() {
         assert!(scene(true) == scene(false), "with a rule elsewhere: {rule}: the world moves otherwise with the hooks");
     }
 }
+
+/// A project that changes a soft body's collider between a cut and the
+/// next step changes that collider alone: the copy Rapier made at the cut
+/// keeps the project's settings from before, under the crate's plan. The
+/// project takes the bar's colliders out of every collision group after the
+/// cut: the piece with them falls through the ground, the piece with the
+/// copies rests on it (a rule elsewhere has the crate write on both).
+#[test]
+fn a_project_change_of_a_collider_after_a_cut_is_not_its_copys() {
+    let (mut world, _floor) = on_ground();
+    let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
+    let root = world.soft_bodies[bar].root_body();
+    let far = world.insert_body(RigidBodyBuilder::fixed().translation(at(20.0, 0.0)));
+    world.insert_collider(cube(0.2), Some(far));
+    let mut hooks = RuleHooks::default();
+    give(&mut hooks, Way::Groups, root, far, CollisionRule::NoPair);
+    hooks.step(&mut world);
+    let originals: Vec<ColliderHandle> = world.soft_bodies[bar].meshes().map(|m| m.collider()).collect();
+    let cut = world.cut_soft_body(bar, &blade_at_x(0.1)).expect("the blade crosses the bar");
+    for &c in &originals {
+        world.colliders[c].set_collision_groups(InteractionGroups::none());
+    }
+    for _ in 0..STEPS {
+        hooks.step(&mut world);
+    }
+    let mut seen = [false; 2];
+    for piece in cut.bodies() {
+        let holds_originals = world.soft_bodies[piece].meshes().any(|m| originals.contains(&m.collider()));
+        let low = lowest(&world, piece);
+        if holds_originals {
+            assert!(low < -1.0, "the piece the project took out of collisions rests at {low}");
+        } else {
+            assert!(low > -0.1, "the piece with the copies fell to {low}");
+        }
+        seen[usize::from(holds_originals)] = true;
+    }
+    assert_eq!(seen, [true, true], "a piece with the originals and one with the copies");
+}

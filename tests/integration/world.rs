@@ -229,14 +229,11 @@ impl Run {
         }
     }
 
-    /// Whether `collider` is a soft body's surface. The project's own layers
-    /// on a soft surface are not edited here: how the pieces of a cut copy
-    /// them is not modelled yet (`docs/semantics.md`, "Soft bodies").
-    fn soft_surface(&self, collider: ColliderHandle) -> bool {
-        self.world
-            .colliders
-            .get(collider)
-            .is_some_and(|c| c.deformable_mesh_ref().is_some())
+    /// Whether `other` names the same objects as this run, so that the
+    /// same edits do the same to both: a cut of a soft body that moved
+    /// differently in each may split it differently.
+    pub fn names_alike(&self, other: &Run) -> bool {
+        self.bodies == other.bodies && self.colliders == other.colliders && self.softs == other.softs
     }
 
     /// Names a soft body's root body and surface colliders in the edits.
@@ -368,9 +365,6 @@ impl Run {
             // run last stepped.
             Edit::ProjectCollision(c, m, f) | Edit::ProjectSolver(c, m, f) => {
                 let handle = self.colliders[c % self.colliders.len()];
-                if self.soft_surface(handle) {
-                    return;
-                }
                 let groups = InteractionGroups::new(LAYERS[m], LAYERS[f], InteractionTestMode::And);
                 self.remember(handle);
                 if let Some(collider) = self.world.colliders.get_mut(handle) {
@@ -385,9 +379,6 @@ impl Run {
             }
             Edit::ProjectTypes(c, t) => {
                 let handle = self.colliders[c % self.colliders.len()];
-                if self.soft_surface(handle) {
-                    return;
-                }
                 self.remember(handle);
                 if let Some(collider) = self.world.colliders.get_mut(handle) {
                     collider.set_active_collision_types(TYPES[t]);

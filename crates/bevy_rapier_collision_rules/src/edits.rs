@@ -3,37 +3,59 @@
 //! difference is edited, so that `OnChange` recalculates just the pairs an
 //! edit can affect (`docs/bevy.md`).
 
+use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
+use bevy_rapier3d::plugin::context::RapierRigidBodySet;
 use bevy_rapier3d::prelude::{
-    RapierColliderHandle, RapierContextEntityLink, RapierRigidBodyHandle,
+    RapierColliderHandle, RapierContextEntityLink, RapierRigidBodyHandle, RapierSoftBodyHandle,
+    SoftBodyTearEvent,
 };
 use rapier_collision_rules::{CollisionRule, CollisionRuleSet, Node};
 
 use super::ledger::{Applied, Ledger, Place};
 use super::{CollisionRules, PersonalRule, RuleGroup, SpecificRules};
 
-/// Every entity's physics object, if it has one: its body, its collider,
-/// its context.
-pub(crate) type Objects<'w, 's> = Query<
-    'w,
-    's,
-    (
-        Option<&'static RapierRigidBodyHandle>,
-        Option<&'static RapierColliderHandle>,
-        Option<&'static RapierContextEntityLink>,
-    ),
->;
+/// An entity's physics handles: its rigid body, soft body, collider, context.
+type Handles = (
+    Option<&'static RapierRigidBodyHandle>,
+    Option<&'static RapierSoftBodyHandle>,
+    Option<&'static RapierColliderHandle>,
+    Option<&'static RapierContextEntityLink>,
+);
 
-/// Where an entity's rules live: the body of an entity with a rigid body
-/// (its colliders inherit them), else its collider.
-pub(crate) fn place_of(objects: &Objects, entity: Entity) -> Option<Place> {
-    let (body, collider, link) = objects.get(entity).ok()?;
-    let node = match (body, collider) {
-        (Some(body), _) => Node::from(body.0),
-        (None, Some(collider)) => Node::from(collider.0),
-        (None, None) => return None,
-    };
-    Some((link?.0, node))
+/// Every entity's physics object, if it has one (its rigid body, soft body,
+/// collider, context), and the contexts' body sets, where a soft body's
+/// root body is found.
+#[derive(SystemParam)]
+pub(crate) struct Objects<'w, 's> {
+    handles: Query<'w, 's, Handles>,
+    sets: Query<'w, 's, &'static RapierRigidBodySet>,
+}
+
+impl Objects<'_, '_> {
+    /// Where an entity's rules live: the body of an entity with a rigid
+    /// body (its colliders inherit them), the root body of an entity with a
+    /// soft body (its surface colliders and cluster proxies inherit them,
+    /// `docs/semantics.md`, "Soft bodies"), else its collider.
+    pub(crate) fn place_of(&self, entity: Entity) -> Option<Place> {
+        let (body, soft, collider, link) = self.handles.get(entity).ok()?;
+        let context = link?.0;
+        let node = match (body, soft, collider) {
+            (Some(body), _, _) => Node::from(body.0),
+            (None, Some(soft), _) => {
+                let set = self.sets.get(context).ok()?;
+                Node::from(set.soft_bodies.get(soft.0)?.root_body())
+            }
+            (None, None, Some(collider)) => Node::from(collider.0),
+            (None, None, None) => return None,
+        };
+        Some((context, node))
+    }
+
+    /// Whether `entity` exists.
+    fn exists(&self, entity: Entity) -> bool {
+        self.handles.contains(entity)
+    }
 }
 
 type Carried = (
@@ -49,10 +71,46 @@ type Edited = (
         Changed<PersonalRule>,
         Changed<SpecificRules>,
         Changed<RapierRigidBodyHandle>,
+        Changed<RapierSoftBodyHandle>,
         Changed<RapierColliderHandle>,
         Changed<RapierContextEntityLink>,
     )>,
 );
+
+/// Soft body entities with rule components: a tear may give the soft body
+/// another root body without a component changing.
+type RuledSoftBodies = (
+    With<RapierSoftBodyHandle>,
+    Or<(With<RuleGroup>, With<PersonalRule>, With<SpecificRules>)>,
+);
+
+/// The pieces a soft body tore or was cut into are named wherever the soft
+/// body was: an entity whose `SpecificRules` name the torn soft body gets
+/// the same rule about each new piece (bevy_rapier gives the pieces copies
+/// of the torn entity's own components), so that the pieces keep the rules
+/// of the body they came from (`docs/bevy.md`, "Soft bodies").
+pub(crate) fn name_tear_pieces(
+    mut tears: MessageReader<SoftBodyTearEvent>,
+    ledger: Res<Ledger>,
+    mut specific: Query<&mut SpecificRules>,
+) {
+    for tear in tears.read() {
+        let Some(named) = ledger.named.get(&tear.soft_body) else {
+            continue;
+        };
+        for &by in &named.by {
+            let Ok(mut rules) = specific.get_mut(by) else {
+                continue;
+            };
+            let rule = rules.get(tear.soft_body);
+            for piece in tear.pieces.iter().map(|p| p.soft_body) {
+                if rule != CollisionRule::Defer && rules.get(piece) == CollisionRule::Defer {
+                    rules.set(piece, rule);
+                }
+            }
+        }
+    }
+}
 
 /// Applies the rule components that changed, were removed, or whose
 /// entity (or an entity they name) got a new physics object. Only entities
@@ -63,15 +121,21 @@ pub(crate) fn apply_rule_components(
     objects: Objects,
     carried: Query<Carried>,
     edited: Query<Entity, Edited>,
+    softs: Query<Entity, RuledSoftBodies>,
 ) {
     let ledger = &mut *ledger;
     let mut dirty: Vec<Entity> = edited.iter().collect();
+    dirty.extend(
+        softs
+            .iter()
+            .filter(|&soft| ledger.applied.get(&soft).map(|a| a.place) != objects.place_of(soft)),
+    );
     dirty.append(&mut ledger.removed);
     dirty.extend(ledger.waiting.drain());
     // A named entity that moved (a new object, another context, despawned):
     // the entries about it are set again.
     for (&target, named) in &ledger.named {
-        if place_of(&objects, target) != named.at {
+        if objects.place_of(target) != named.at {
             dirty.extend(named.by.iter().copied());
         }
     }
@@ -99,7 +163,7 @@ fn apply(
         Option<&SpecificRules>,
     ),
 ) {
-    let place = place_of(objects, entity);
+    let place = objects.place_of(entity);
     let wants = group.is_some() || personal.is_some() || specific.is_some();
     let old = ledger.applied.remove(&entity);
     if let Some(old) = &old {
@@ -142,11 +206,11 @@ fn apply(
     }
     let mut entries = Vec::new();
     for (target, rule) in specific.into_iter().flat_map(SpecificRules::iter) {
-        if objects.get(target).is_err() {
+        if !objects.exists(target) {
             // Despawned: its entries went with it.
             continue;
         }
-        let at = place_of(objects, target);
+        let at = objects.place_of(target);
         ledger.name(entity, target, at);
         match at {
             Some((c, target_node)) if c == context => entries.push((target, target_node, rule)),

@@ -5,7 +5,8 @@
 //! and hooks.
 //!
 //! - [`RuleGroup`], [`PersonalRule`] and [`SpecificRules`] on an entity
-//!   with a rigid body or a collider give it rules; changing or removing
+//!   with a rigid body, a soft body or a collider give it rules (the
+//!   pieces of a soft body's tear keep them); changing or removing
 //!   them reaches live pairs before the next step (sleeping bodies are
 //!   woken), and a despawned entity leaves no rules behind.
 //! - [`RuleTable`], a resource, holds the group table and the default

@@ -9,7 +9,7 @@ use bevy_rapier3d::prelude::{
     ActiveCollisionTypes, ActiveHooks, CollisionGroups, RapierRigidBodyHandle, SolverGroups,
 };
 
-use super::edits::apply_rule_components;
+use super::edits::{apply_rule_components, name_tear_pieces};
 use super::hierarchy::follow_hierarchy;
 use super::ledger::Ledger;
 use super::misuse::check_hooks;
@@ -126,6 +126,7 @@ impl Plugin for CollisionRulesPlugin {
         let prepare = (
             share_table,
             follow_hierarchy,
+            name_tear_pieces,
             apply_rule_components,
             notice_project_settings,
             prepare_contexts,

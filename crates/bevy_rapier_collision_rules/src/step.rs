@@ -24,9 +24,13 @@ pub(crate) fn prepare_contexts(
         let rules = &mut *rules;
         let simulation = simulation.bypass_change_detection();
         let colliders = &mut colliders.bypass_change_detection().colliders;
-        let bodies = &mut bodies.bypass_change_detection().bodies;
+        let set = bodies.bypass_change_detection();
         rules.colliders_at = std::ptr::from_ref(colliders) as usize;
         let hooks = rules.hooks_mut();
+        // Pieces of tears take their source's rules, cluster proxies their
+        // soft body's root as parent (`docs/semantics.md`, "Soft bodies").
+        hooks.follow_soft_bodies(&set.soft_bodies, &set.bodies);
+        let bodies = &mut set.bodies;
         hooks.prepare_with_graph(bodies, colliders, &simulation.narrow_phase);
         hooks.freeze_manifolds(&simulation.narrow_phase);
         hooks.wake_edited(&mut simulation.islands, bodies);

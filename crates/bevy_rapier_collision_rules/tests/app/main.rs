@@ -10,4 +10,5 @@ mod hierarchy;
 mod outcomes;
 mod project;
 mod scene;
+mod soft;
 mod stepping;

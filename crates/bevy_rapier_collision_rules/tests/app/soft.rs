@@ -1,0 +1,206 @@
+//! Soft bodies as entities (`docs/bevy.md`, "Soft bodies"): bevy_rapier's
+//! `SoftBody` entity carries `RuleGroup`, `PersonalRule` and
+//! `SpecificRules` as a rigid body's does, against the same scene without
+//! the floor; the pieces of a cut keep the rules, and a despawned soft body
+//! leaves none behind.
+
+use CollisionRule::*;
+use bevy::ecs::system::RunSystemOnce;
+use bevy::prelude::*;
+use bevy_rapier_collision_rules::prelude::*;
+use bevy_rapier3d::plugin::context::RapierRigidBodySet;
+use bevy_rapier3d::prelude::*;
+
+use super::scene::{Sim, floor};
+
+const FRAMES: usize = 90;
+
+/// How the rule between the soft body and the floor is given.
+#[derive(Clone, Copy, Debug)]
+enum Given {
+    SoftNamesFloor,
+    FloorNamesSoft,
+    Personal,
+    Groups,
+}
+
+const GIVENS: [Given; 4] = [
+    Given::SoftNamesFloor,
+    Given::FloorNamesSoft,
+    Given::Personal,
+    Given::Groups,
+];
+
+fn give(sim: &mut Sim, soft: Entity, floor: Entity, rule: CollisionRule, given: Given) {
+    match given {
+        Given::SoftNamesFloor => {
+            sim.entity_mut(soft)
+                .insert(SpecificRules::new().with(floor, rule));
+        }
+        Given::FloorNamesSoft => {
+            sim.entity_mut(floor)
+                .insert(SpecificRules::new().with(soft, rule));
+        }
+        Given::Personal => {
+            sim.entity_mut(soft).insert(PersonalRule(rule));
+        }
+        Given::Groups => {
+            let mut table = sim.table();
+            let (softs, floors) = (table.create_group(), table.create_group());
+            table.set_group_rule(softs, floors, rule);
+            sim.entity_mut(soft).insert(RuleGroup(softs));
+            sim.entity_mut(floor).insert(RuleGroup(floors));
+        }
+    }
+}
+
+/// A soft cube (4x4x4 particles) whose lowest particles start 0.05 m over
+/// the floor's top.
+fn jelly() -> impl Bundle {
+    (
+        Transform::from_xyz(0.0, 0.55, 0.0),
+        SoftBody::cuboid(Vec3::splat(0.5), 4, 4, 4),
+    )
+}
+
+/// The lowest particle of each soft body entity given.
+fn lowest(sim: &mut Sim, soft: Entity) -> f32 {
+    let context = sim.context();
+    let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
+    let body = set.soft_body(soft).expect("a soft body entity");
+    body.particle_positions()
+        .map(|p| p.y)
+        .fold(f32::MAX, f32::min)
+}
+
+/// The jelly's lowest particle after the frames, with the floor under it
+/// and `rule` given as `given`, or with no floor.
+fn jelly_fall(floor_and_rule: Option<(CollisionRule, Given)>) -> f32 {
+    let mut sim = Sim::new();
+    let soft = sim.spawn(jelly());
+    if let Some((rule, given)) = floor_and_rule {
+        let f = sim.spawn(floor());
+        give(&mut sim, soft, f, rule, given);
+    }
+    sim.run(FRAMES);
+    lowest(&mut sim, soft)
+}
+
+#[test]
+fn a_soft_body_entity_obeys_every_rule_from_every_component() {
+    let alone = jelly_fall(None);
+    assert!(alone < -1.0, "the jelly alone falls: {alone}");
+    for given in GIVENS {
+        for rule in [Normal, NoResponse, NoContacts, NoPair] {
+            let low = jelly_fall(Some((rule, given)));
+            let case = format!("{rule:?} as {given:?}: lowest particle at {low}");
+            if rule == Normal {
+                assert!(low > -0.05, "{case}: the jelly should rest on the floor");
+            } else {
+                assert_eq!(
+                    low, alone,
+                    "{case}: the jelly should fall as with no floor ({alone})"
+                );
+            }
+        }
+    }
+}
+
+/// How a soft body is split in two.
+#[derive(Clone, Copy, Debug)]
+enum Split {
+    /// `cut_soft_body` across x = 0.1.
+    Cut,
+    /// `tear_soft_body` along the edges across x = 0.
+    Tear,
+}
+
+/// Splits the soft body of `soft` and returns the entities of the pieces
+/// (the first is `soft`).
+fn split(sim: &mut Sim, soft: Entity, how: Split) -> Vec<Entity> {
+    let blade = [
+        Vec3::new(0.1, -10.0, -10.0),
+        Vec3::new(0.1, 20.0, -10.0),
+        Vec3::new(0.1, -10.0, 20.0),
+    ];
+    sim.app
+        .world_mut()
+        .run_system_once(
+            move |mut context: WriteRapierContext, mut commands: Commands| {
+                let mut context = context.single_mut().unwrap();
+                let result = match how {
+                    Split::Cut => context.cut_soft_body(&mut commands, soft, &blade),
+                    Split::Tear => {
+                        let body = context.rigidbody_set.soft_body(soft).unwrap();
+                        let left = |v: u32| body.particle_position(v as usize).x < 0.0;
+                        let edges: Vec<u32> = (0..body.edges().len() as u32)
+                            .filter(|&e| {
+                                let [a, b] = body.edges()[e as usize].vertices;
+                                left(a) != left(b)
+                            })
+                            .collect();
+                        context.tear_soft_body(&mut commands, soft, &edges, &[])
+                    }
+                };
+                result.map(|r| r.pieces)
+            },
+        )
+        .unwrap()
+        .expect("the bar splits")
+}
+
+#[test]
+fn the_pieces_of_a_cut_or_a_tear_keep_the_soft_bodys_rules() {
+    for how in [Split::Cut, Split::Tear] {
+        for given in GIVENS {
+            for rule in [NoResponse, NoContacts, NoPair] {
+                let case = format!("{how:?}, {rule:?} as {given:?}");
+                let mut sim = Sim::new();
+                let bar = sim.spawn((
+                    Transform::from_xyz(0.0, 0.3, 0.0),
+                    SoftBody::cuboid(Vec3::new(1.0, 0.25, 0.25), 6, 2, 2),
+                ));
+                let f = sim.spawn(floor());
+                give(&mut sim, bar, f, rule, given);
+                sim.run(1);
+                let pieces = split(&mut sim, bar, how);
+                assert!(pieces.len() >= 2, "{case}: pieces {pieces:?}");
+                sim.run(FRAMES);
+                for &piece in &pieces {
+                    let low = lowest(&mut sim, piece);
+                    assert!(low < -1.0, "{case}: piece {piece:?} rests at {low}");
+                    // The components say so too: the pieces carry the bar's,
+                    // and the floor's entries name each piece.
+                    let world = sim.app.world();
+                    let carried = match given {
+                        Given::SoftNamesFloor => {
+                            world.get::<SpecificRules>(piece).map(|s| s.get(f))
+                        }
+                        Given::FloorNamesSoft => {
+                            world.get::<SpecificRules>(f).map(|s| s.get(piece))
+                        }
+                        Given::Personal => world.get::<PersonalRule>(piece).map(|p| p.0),
+                        Given::Groups => world.get::<RuleGroup>(piece).map(|_| rule),
+                    };
+                    assert_eq!(carried, Some(rule), "{case}: piece {piece:?}'s components");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_despawned_soft_body_leaves_no_rules_behind() {
+    let mut sim = Sim::new();
+    let soft = sim.spawn((jelly(), PersonalRule(NoPair)));
+    sim.spawn(floor());
+    sim.run(2);
+    assert!(
+        sim.rules().rules().record_count() > 0,
+        "the jelly's rule is held"
+    );
+    sim.app.world_mut().despawn(soft);
+    sim.run(2);
+    let left = sim.rules().rules().nodes().count();
+    assert_eq!(left, 0, "nodes left with rules after the despawn");
+}

@@ -9,12 +9,17 @@ use std::sync::mpsc::{Receiver, channel};
 use crate::rapier::prelude::*;
 use crate::rules::{CollisionRule, CollisionRuleSet, Explanation, RuleError, RuleHooks};
 use crate::view::{self, Shape};
-use crate::{at, axle, cuboid};
+use crate::{at, axle, blade_at_y, cuboid, jelly, net};
 
 const STEPS: usize = 180;
 const SNAPSHOTS: [usize; 4] = [0, 40, 90, 180];
+/// The step at which the rope is cut.
+const CUT: usize = 60;
 /// Where each actor stands, for the labels of the first view.
-const LABELS: [(&str, f32); 7] = [
+const LABELS: [(&str, f32); 10] = [
+    ("jelly, gate", -34.0),
+    ("walker, net", -28.0),
+    ("cut rope", -22.5),
     ("ragdoll", -16.6),
     ("vehicle", -8.0),
     ("ghost + wall", 1.0),
@@ -51,7 +56,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
     let mut world = PhysicsWorld::new();
     let mut rules = CollisionRuleSet::default();
     let ground = body_at(&mut world, RigidBodyBuilder::fixed(), 0.0, -0.5);
-    let floor = world.insert_collider(cuboid(40.0, 0.5, 4.0), Some(ground));
+    let floor = world.insert_collider(cuboid(50.0, 0.5, 4.0), Some(ground));
     let mut actors = Vec::new();
 
     // A ragdoll: three overlapping limbs in one group that ignores itself.
@@ -197,6 +202,69 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         pair: (slug, wall2),
     });
 
+    // Soft bodies (`docs/semantics.md`, "Soft bodies"), named by their root
+    // bodies. A jelly dropped through a gate it does not respond to.
+    let gate_body = body_at(&mut world, RigidBodyBuilder::fixed(), -34.0, 1.6);
+    let gate = world.insert_collider(evented(cuboid(0.8, 0.1, 0.8)), Some(gate_body));
+    let jelly = world.insert_soft_body(jelly(at(-34.0, 3.0)));
+    rules.set_specific(
+        world.soft_bodies[jelly].root_body(),
+        gate_body,
+        CollisionRule::NoResponse,
+    );
+    let skin = soft_colliders(&world, jelly);
+    actors.push(Actor {
+        name: "jelly/gate",
+        colliders: skin.iter().copied().chain([gate]).collect(),
+        pair: (skin[0], gate),
+    });
+
+    // A walker passing through a net pinned at its ends, as debris lands on it.
+    let net = world.insert_soft_body(net(-29.5, -26.5, 1.2));
+    let walker_body = body_at(
+        &mut world,
+        RigidBodyBuilder::kinematic_velocity_based().linvel(at(1.0, 0.0)),
+        -31.0,
+        1.2,
+    );
+    let walker = world.insert_collider(ColliderBuilder::capsule_y(0.5, 0.3), Some(walker_body));
+    rules.set_specific(
+        walker_body,
+        world.soft_bodies[net].root_body(),
+        CollisionRule::NoResponse,
+    );
+    let netting = soft_colliders(&world, net);
+    actors.push(Actor {
+        name: "walker/net",
+        colliders: [walker]
+            .into_iter()
+            .chain(netting.iter().copied())
+            .collect(),
+        pair: (walker, netting[0]),
+    });
+    let dropped_body = body_at(&mut world, RigidBodyBuilder::dynamic(), -27.0, 2.5);
+    let dropped = world.insert_collider(cuboid(0.15, 0.15, 0.15), Some(dropped_body));
+    actors.push(Actor {
+        name: "debris/net",
+        colliders: vec![dropped],
+        pair: (dropped, netting[0]),
+    });
+
+    // A rope hung from its top end that ignores the floor, cut in two.
+    let rope = SoftBodyBuilder::rope(at(-22.5, 4.0), at(-22.5, 1.0), 12).pinned_particles([0]);
+    let rope = world.insert_soft_body(rope);
+    rules.set_specific(
+        world.soft_bodies[rope].root_body(),
+        ground,
+        CollisionRule::NoPair,
+    );
+    let strands = soft_colliders(&world, rope);
+    actors.push(Actor {
+        name: "rope/floor",
+        colliders: strands.clone(),
+        pair: (strands[0], floor),
+    });
+
     let handles = Handles {
         limbs: limbs.iter().map(|l| l.0).collect(),
         chassis,
@@ -208,6 +276,11 @@ fn build() -> Result<(Scene, Handles), RuleError> {
             .collect(),
         platforms: (left, right),
         bullets: (shot, stopped),
+        jelly,
+        net,
+        walker: walker_body,
+        dropped: dropped_body,
+        rope,
     };
     Ok((
         Scene {
@@ -229,6 +302,38 @@ struct Handles {
     debris_bodies: Vec<RigidBodyHandle>,
     platforms: (RigidBodyHandle, RigidBodyHandle),
     bullets: (RigidBodyHandle, RigidBodyHandle),
+    jelly: SoftBodyHandle,
+    net: SoftBodyHandle,
+    walker: RigidBodyHandle,
+    dropped: RigidBodyHandle,
+    rope: SoftBodyHandle,
+}
+
+/// The colliders of a soft body's meshes.
+fn soft_colliders(world: &PhysicsWorld, soft: SoftBodyHandle) -> Vec<ColliderHandle> {
+    let colliders: Vec<_> = world.soft_bodies[soft]
+        .meshes()
+        .map(|m| m.collider())
+        .collect();
+    assert!(
+        !colliders.is_empty(),
+        "a soft body of the scene has colliders"
+    );
+    colliders
+}
+
+/// The lowest of a soft body's particles.
+fn lowest(world: &PhysicsWorld, soft: SoftBodyHandle) -> f32 {
+    world.soft_bodies[soft]
+        .particle_positions()
+        .map(|p| p.y)
+        .fold(f32::MAX, f32::min)
+}
+
+/// The mean of a soft body's particles along x.
+fn mean_x(world: &PhysicsWorld, soft: SoftBodyHandle) -> f32 {
+    let body = &world.soft_bodies[soft];
+    body.particle_positions().map(|p| p.x).sum::<f32>() / body.num_particles() as f32
 }
 
 /// What was seen of each actor's pair over the run.
@@ -247,7 +352,7 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
     let Scene {
         mut world,
         rules,
-        actors,
+        mut actors,
         floor,
     } = scene;
     let explanations: Vec<Explanation> = actors
@@ -264,6 +369,12 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
         x0(&world, h.platforms.1),
         x0(&world, h.bullets.0),
     );
+    let net_x = mean_x(&world, h.net);
+    let rope_actor = actors
+        .iter()
+        .position(|a| a.name == "rope/floor")
+        .expect("the rope");
+    let mut rope_pieces = vec![h.rope];
 
     let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/showcase");
     std::fs::create_dir_all(&out)?;
@@ -274,6 +385,19 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
         }
         if step == STEPS {
             break;
+        }
+        if step == CUT {
+            let cut = world
+                .cut_soft_body(h.rope, &blade_at_y(-22.5, 2.5))
+                .ok_or("the blade misses the rope")?;
+            rope_pieces = cut.bodies().collect();
+            // The pieces' colliders (one side's are Rapier's copies).
+            let strands: Vec<ColliderHandle> = rope_pieces
+                .iter()
+                .flat_map(|&p| soft_colliders(&world, p))
+                .collect();
+            actors[rope_actor].pair.0 = strands[0];
+            actors[rope_actor].colliders = strands;
         }
         hooks.step_with_events(&mut world, &collector);
         while let Ok(event) = events.try_recv() {
@@ -373,6 +497,40 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
             format!("stopped at x = {:.2}", pos(h.bullets.1).x),
             pos(h.bullets.1).x < 30.0,
         ),
+        (
+            format!(
+                "passed the gate, rests at y = {:.2}",
+                lowest(&world, h.jelly)
+            ),
+            (-0.05..0.3).contains(&lowest(&world, h.jelly))
+                && seen[9].live == Some(CollisionRule::NoResponse),
+        ),
+        (
+            format!(
+                "walked to x = {:.2}, net's mean x moved {:+.3}",
+                pos(h.walker).x,
+                mean_x(&world, h.net) - net_x
+            ),
+            (mean_x(&world, h.net) - net_x).abs() < 0.05
+                && seen[10].live == Some(CollisionRule::NoResponse),
+        ),
+        (
+            format!("rests on the net at y = {:.2}", pos(h.dropped).y),
+            pos(h.dropped).y > 0.9 && seen[11].touched,
+        ),
+        {
+            let lows: Vec<f32> = rope_pieces.iter().map(|&p| lowest(&world, p)).collect();
+            let (low, high) = lows
+                .iter()
+                .fold((f32::MAX, f32::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+            (
+                format!(
+                    "cut at {:.1} s: a half fell to y = {low:.1}, one hangs to {high:.2}",
+                    CUT as f32 / 60.0
+                ),
+                lows.len() == 2 && low < -1.0 && high > 1.5 && seen[12].live.is_none(),
+            )
+        },
     ];
 
     println!(
@@ -402,8 +560,12 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
         world.colliders.len(),
         hooks.stats().hooked_colliders
     );
+    println!(
+        "(a soft body's NoResponse pair with a rigid collider has no contacts and no events \
+         in Rapier 0.36.1: docs/semantics.md, \"Soft bodies\")"
+    );
 
-    let svg = view::render(&frames, LABELS);
+    let svg = view::render(&frames, &LABELS);
     std::fs::write(out.join(picture), &svg)?;
     // The README's picture, the same each run: regenerated here.
     let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
@@ -438,7 +600,9 @@ fn snapshot(world: &PhysicsWorld, hooks: &RuleHooks, actors: &[Actor]) -> Vec<Sh
         .colliders
         .iter()
         .map(|(handle, collider)| {
-            let aabb = collider.compute_aabb();
+            // With its contact skin: a soft body's rope is a polyline of
+            // no width, thickened by its particles' radius.
+            let aabb = collider.compute_aabb().loosened(collider.contact_skin());
             Shape {
                 min: (aabb.mins.x, aabb.mins.y),
                 max: (aabb.maxs.x, aabb.maxs.y),

@@ -24,8 +24,8 @@ pub fn color(rule: Option<CollisionRule>) -> &'static str {
 }
 
 /// The frames stacked top to bottom, with a legend, as one SVG document.
-pub fn render(frames: &[(usize, Vec<Shape>)], labels: [(&str, f32); 7]) -> String {
-    let (x0, x1, y0, y1) = (-20.0f32, 36.0f32, -1.0f32, 6.0f32);
+pub fn render(frames: &[(usize, Vec<Shape>)], labels: &[(&str, f32)]) -> String {
+    let (x0, x1, y0, y1) = (-36.0f32, 36.0f32, -1.0f32, 6.0f32);
     let scale = 18.0;
     let (w, h) = ((x1 - x0) * scale, (y1 - y0) * scale);
     let mut svg = String::new();
@@ -68,7 +68,7 @@ pub fn render(frames: &[(usize, Vec<Shape>)], labels: [(&str, f32); 7]) -> Strin
             top + h
         );
         if i == 0 {
-            for (name, x) in labels {
+            for &(name, x) in labels {
                 let (lx, ly) = ((x - x0) * scale, top + 30.0);
                 let _ = writeln!(
                     svg,

@@ -4,7 +4,10 @@
 //! a ghost passing one way through a wall with its contact events, a pickup
 //! zone, debris that falls through the player, kinematic platforms that do
 //! not push each other, and CCD bullets through a `NoResponse` shield and
-//! against a `Normal` wall.
+//! against a `Normal` wall; and soft bodies: a jelly dropped through a gate
+//! it does not respond to, a net (a rope pinned at both ends) a walker
+//! passes through while debris lands on it, and a rope cut in two whose
+//! halves keep their `NoPair` with the floor.
 //!
 //! Prints one row per actor with the measured outcome, writes the side
 //! views to `target/showcase/scene2d.svg`, and exits non-zero if any
@@ -36,6 +39,24 @@ fn axle(anchor1: Vector) -> RevoluteJointBuilder {
     RevoluteJointBuilder::new()
         .local_anchor1(anchor1)
         .local_anchor2(Vector::ZERO)
+}
+
+/// A jelly square of half-extent 0.4 centred at `center`.
+fn jelly(center: Vector) -> SoftBodyBuilder {
+    SoftBodyBuilder::grid(center, Vector::splat(0.4), 4, 4)
+}
+
+/// A horizontal net from `x0` to `x1` at height `y`, pinned at both ends:
+/// a rope, the plane's cloth.
+fn net(x0: f32, x1: f32, y: f32) -> SoftBodyBuilder {
+    let n = 13;
+    SoftBodyBuilder::rope(Vector::new(x0, y), Vector::new(x1, y), n)
+        .pinned_particles([0, n as u32 - 1])
+}
+
+/// A blade across the line `y`.
+fn blade_at_y(x: f32, y: f32) -> [Vector; 2] {
+    [Vector::new(x - 10.0, y), Vector::new(x + 10.0, y)]
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

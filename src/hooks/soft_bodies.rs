@@ -53,9 +53,14 @@ impl Seen {
     fn of(body: &SoftBody) -> Seen {
         Seen {
             root: body.root_body(),
-            meshes: body.meshes().map(|m| m.collider()).collect(),
+            meshes: mesh_colliders(body),
         }
     }
+}
+
+/// The colliders of a soft body's meshes.
+fn mesh_colliders(body: &SoftBody) -> CollidersUnder {
+    body.meshes().map(|m| m.collider()).collect()
 }
 
 impl RuleHooks {
@@ -124,7 +129,6 @@ impl RuleHooks {
             return;
         }
         self.soft.counts = counts;
-        self.soft.known.retain(|&h, _| soft_bodies.contains(h));
         let mut new: Vec<SoftBodyHandle> = soft_bodies
             .iter()
             .map(|(h, _)| h)
@@ -132,30 +136,41 @@ impl RuleHooks {
             .collect();
         new.sort_unstable_by_key(|h| h.into_raw_parts());
         // A piece torn off a piece in the same step takes its rules once its
-        // own source has them: sources first.
+        // own source has them: sources first. A source the project removed
+        // since the hooks last saw it is found in their record of it (its
+        // rules are still held until the hooks see the removal).
         while !new.is_empty() {
             let before = new.len();
             new.retain(|&handle| {
                 let body = &soft_bodies[handle];
-                let source = body.origin().filter(|&o| soft_bodies.contains(o));
-                let Some(source) = source else {
+                let source = body.origin();
+                let held = source.and_then(|s| self.soft.known.get(&s).cloned());
+                let Some((source, held)) = source.zip(held) else {
+                    // A source new this step waits for its turn; no source,
+                    // or one never seen: the piece starts with no rules.
+                    if source.is_some_and(|s| soft_bodies.contains(s)) {
+                        return true;
+                    }
                     self.soft.known.insert(handle, Seen::of(body));
                     return false;
                 };
-                let Some(held) = self.soft.known.get(&source).cloned() else {
-                    return true;
-                };
-                let from = &soft_bodies[source];
+                let from = soft_bodies.get(source);
                 // The rules are on the root the source had: the roots of both
                 // sides now that are not it take them.
-                for root in [from.root_body(), body.root_body()] {
+                for root in from.map(SoftBody::root_body).into_iter().chain([body.root_body()]) {
                     if root != held.root {
                         self.decide.rules.give_piece(held.root, root);
                     }
                 }
-                self.soft.known.insert(source, Seen::of(from));
+                let sides: [CollidersUnder; 2] = [
+                    from.map(mesh_colliders).unwrap_or_default(),
+                    mesh_colliders(body),
+                ];
+                if let Some(from) = from {
+                    self.soft.known.insert(source, Seen::of(from));
+                }
                 self.soft.known.insert(handle, Seen::of(body));
-                self.copy_settings_across_cut(&held.meshes, from, body);
+                self.copy_settings_across_cut(&held.meshes, &sides);
                 false
             });
             if new.len() == before {
@@ -165,6 +180,7 @@ impl RuleHooks {
                 }
             }
         }
+        self.soft.known.retain(|&h, _| soft_bodies.contains(h));
         let rules = &mut self.decide.rules;
         for (_, body) in soft_bodies.iter() {
             let root = body.root_body();
@@ -192,11 +208,7 @@ impl RuleHooks {
     /// source's colliders held as colliders stay with those colliders.
     /// `seen` are the source's colliders before the cut: the original of a
     /// copy whose side lost it since (the project removed it) is found there.
-    fn copy_settings_across_cut(&mut self, seen: &[ColliderHandle], from: &SoftBody, piece: &SoftBody) {
-        let sides: [Vec<ColliderHandle>; 2] = [
-            from.meshes().map(|m| m.collider()).collect(),
-            piece.meshes().map(|m| m.collider()).collect(),
-        ];
+    fn copy_settings_across_cut(&mut self, seen: &[ColliderHandle], sides: &[CollidersUnder; 2]) {
         // Whether the crate knows the project's settings of a collider (a
         // copy made by an earlier cut of this step included).
         let known = |c: ColliderHandle, pieces: &[(ColliderHandle, ColliderHandle)]| {

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use super::rapier::prelude::*;
 use super::rules::{CollisionGroup, CollisionRule, Node, RuleHooks, Stage};
-use super::{at, blade_at_x, cube, pose_bits, slab, soft_piece};
+use super::{at, blade_at_x, cube, pose_bits, slab, soft_bar, soft_piece};
 
 #[derive(Clone, Debug)]
 pub enum Edit {
@@ -57,6 +57,13 @@ pub enum Edit {
     /// A soft body (by index among those added) cut across its middle:
     /// the pieces join the bodies and colliders the edits name.
     CutSoft(usize),
+    /// A soft body torn along the edges that cross its middle.
+    TearSoft(usize),
+    /// A soft body removed, with its proxies and colliders.
+    RemoveSoft(usize),
+    /// A soft bar pinned at both ends, the ends pulled apart step by step
+    /// until it tears during a Rapier step (a strain tear).
+    AddTearable(f32, f32),
     /// A save with one number changed (the leaf picked by the first value,
     /// the number the second) loaded into the hooks if the loader takes it
     /// (with `serde`): loads as an error or as a rule set the hooks keep
@@ -109,6 +116,8 @@ pub struct Run {
     removed: Vec<ColliderHandle>,
     /// The soft bodies added, and the pieces of their cuts.
     softs: Vec<SoftBodyHandle>,
+    /// Soft bodies pulled apart until they tear.
+    pulled: Vec<Pulled>,
     /// The settings the project gave colliders through Rapier.
     project: HashMap<ColliderHandle, Project>,
     /// For colliders the project changed since the last step: their
@@ -117,6 +126,39 @@ pub struct Run {
     /// The number of colliders, and of removed ones, when this run last
     /// stepped.
     at_last_step: (usize, usize),
+}
+
+/// A soft body pulled apart: the particles of its ends with where they
+/// started and which way they go, the number of soft bodies when the pull
+/// began, the steps pulled.
+struct Pulled {
+    soft: SoftBodyHandle,
+    ends: Vec<(u32, Vector, f32)>,
+    softs: usize,
+    steps: usize,
+}
+
+impl Pulled {
+    /// Moves the ends' targets 2.5 cm a step further apart, for a second at
+    /// most, until a piece splits off (or the body is cut or gone). Whether
+    /// to keep pulling.
+    fn pull(&mut self, world: &mut PhysicsWorld) -> bool {
+        let softs = world.soft_bodies.len();
+        let Some(body) = world.soft_bodies.get_mut(self.soft) else {
+            return false;
+        };
+        if softs != self.softs || self.steps >= 60 {
+            return false;
+        }
+        self.steps += 1;
+        let pull = 0.025 * self.steps as f32;
+        for &(i, start, way) in &self.ends {
+            if (i as usize) < body.num_particles() {
+                body.set_particle_kinematic_target(i as usize, start + at(way * pull, 0.0));
+            }
+        }
+        true
+    }
 }
 
 /// A collider's settings as its project set them.
@@ -164,6 +206,7 @@ impl Run {
             colliders: vec![floor],
             removed: Vec::new(),
             softs: Vec::new(),
+            pulled: Vec::new(),
             project: HashMap::new(),
             since_step: HashMap::new(),
             at_last_step: (0, 0),
@@ -327,6 +370,57 @@ impl Run {
                 self.world.cut_soft_body(soft, &blade_at_x(middle));
                 self.adopt_pieces();
             }
+            Edit::TearSoft(i) => {
+                let Some(&soft) = self.softs.get(i % self.softs.len().max(1)) else {
+                    return;
+                };
+                let Some(body) = self.world.soft_bodies.get(soft) else {
+                    return;
+                };
+                let n = body.num_particles().max(1) as f32;
+                let middle = body.particle_positions().map(|p| p.x).sum::<f32>() / n;
+                let left = |v: u32| body.particle_position(v as usize).x < middle;
+                let edges: Vec<u32> = (0..body.edges().len() as u32)
+                    .filter(|&e| {
+                        let [a, b] = body.edges()[e as usize].vertices;
+                        left(a) != left(b)
+                    })
+                    .collect();
+                self.world.tear_soft_body(soft, &edges, &[]);
+                self.adopt_pieces();
+            }
+            Edit::RemoveSoft(i) => {
+                let Some(&soft) = self.softs.get(i % self.softs.len().max(1)) else {
+                    return;
+                };
+                let Some(body) = self.world.soft_bodies.get(soft) else {
+                    return;
+                };
+                let meshes: Vec<ColliderHandle> = body.meshes().map(|m| m.collider()).collect();
+                if self.world.remove_soft_body(soft).is_some() {
+                    self.removed.extend(meshes);
+                }
+            }
+            Edit::AddTearable(x, y) => {
+                let builder = soft_bar(at(x, y), 1.0);
+                let ends: Vec<u32> = (0..builder.particle_positions().len() as u32)
+                    .filter(|&i| (builder.particle_positions()[i as usize].x - x).abs() > 0.99)
+                    .collect();
+                let soft = self
+                    .world
+                    .insert_soft_body(builder.pinned_particles(ends.clone()).tear_strain(0.3));
+                let body = &self.world.soft_bodies[soft];
+                let ends = ends
+                    .iter()
+                    .map(|&i| {
+                        let start = body.particle_position(i as usize);
+                        (i, start, if start.x > x { 1.0 } else { -1.0 })
+                    })
+                    .collect();
+                let softs = self.world.soft_bodies.len();
+                self.pulled.push(Pulled { soft, ends, softs, steps: 0 });
+                self.adopt_soft(soft);
+            }
             Edit::AddCollider(b) => {
                 let handle = self.body(b);
                 if self.world.bodies.contains(handle) {
@@ -479,6 +573,8 @@ impl Run {
     }
 
     pub fn step(&mut self) {
+        let world = &mut self.world;
+        self.pulled.retain_mut(|pulled| pulled.pull(world));
         self.before_step();
         self.hooks.step(&mut self.world);
         self.adopt_pieces();

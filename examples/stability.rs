@@ -493,6 +493,32 @@ fn soft_overlap(depth: f32, switch: SoftSwitch) -> f32 {
     peak
 }
 
+/// A labelled line of a chart: its points.
+type Series = (String, Vec<(f64, f64)>);
+
+/// Each switch measured at every depth of `DEPTHS`: the rows written to
+/// `csv` and printed, one line a switch, and returned with their labels.
+fn depth_sweep<S: Copy + std::fmt::Debug>(
+    switches: &[S],
+    csv: &mut String,
+    measure: impl Fn(f32, S) -> f32,
+) -> Result<Vec<Series>, Failure> {
+    let mut series = Vec::new();
+    for &switch in switches {
+        let points: Vec<(f64, f64)> = DEPTHS
+            .iter()
+            .map(|&d| (f64::from(d), f64::from(measure(d, switch))))
+            .collect();
+        for &(d, v) in &points {
+            writeln!(csv, "{d},{switch:?},{v}")?;
+        }
+        let row: Vec<String> = points.iter().map(|p| format!("{:.2}", p.1)).collect();
+        println!("{:<12} {}", format!("{switch:?}"), row.join(" "));
+        series.push((format!("{switch:?}"), points));
+    }
+    Ok(series)
+}
+
 // ---------------------------------------------------------------- output
 
 fn write(name: &str, csv: &str) -> Result<(), Failure> {
@@ -653,29 +679,14 @@ fn main() -> Result<(), Failure> {
     // Overlap.
     let cap = f64::from(IntegrationParameters::default().max_corrective_velocity());
     let mut csv = String::from("depth,switch,peak_speed_m_s\n");
-    let mut series = Vec::new();
     println!(
         "\nOverlap: peak separation speed (m/s) of two unit cubes overlapping by a share of their width (Rapier's corrective-velocity limit {cap} m/s)"
     );
-    for switch in [Switch::Plain, Switch::Abrupt, Switch::Staged] {
-        let points: Vec<(f64, f64)> = DEPTHS
-            .iter()
-            .map(|&d| (f64::from(d), f64::from(overlap(d, switch))))
-            .collect();
-        for &(d, v) in &points {
-            writeln!(csv, "{d},{switch:?},{v}")?;
-        }
-        println!(
-            "{:<8} {}",
-            format!("{switch:?}"),
-            points
-                .iter()
-                .map(|p| format!("{:.2}", p.1))
-                .collect::<Vec<_>>()
-                .join(" ")
-        );
-        series.push((format!("{switch:?}"), points));
-    }
+    let series = depth_sweep(
+        &[Switch::Plain, Switch::Abrupt, Switch::Staged],
+        &mut csv,
+        overlap,
+    )?;
     write("overlap", &csv)?;
     for (i, &depth) in DEPTHS.iter().enumerate() {
         let (plain, abrupt, staged) = (series[0].1[i].1, series[1].1[i].1, series[2].1[i].1);
@@ -715,7 +726,6 @@ fn main() -> Result<(), Failure> {
 
     // A soft block and a rigid cube overlapping.
     let mut csv = String::from("depth,switch,peak_speed_m_s\n");
-    let mut soft_series = Vec::new();
     let mut known: Vec<String> = Vec::new();
     println!(
         "\nOverlap, soft: peak speed (m/s) of a rigid unit cube put into a settled soft block by a share of their width"
@@ -726,25 +736,10 @@ fn main() -> Result<(), Failure> {
         SoftSwitch::Abrupt,
         SoftSwitch::Staged,
     ];
-    for switch in switches {
-        let points: Vec<(f64, f64)> = DEPTHS
-            .iter()
-            .map(|&d| (f64::from(d), f64::from(soft_overlap(d, switch))))
-            .collect();
-        for &(d, v) in &points {
-            writeln!(csv, "{d},{switch:?},{v}")?;
-        }
-        println!(
-            "{:<12} {}",
-            format!("{switch:?}"),
-            points
-                .iter()
-                .map(|p| format!("{:.2}", p.1))
-                .collect::<Vec<_>>()
-                .join(" ")
-        );
-        soft_series.push(points);
-    }
+    let soft_series: Vec<Vec<(f64, f64)>> = depth_sweep(&switches, &mut csv, soft_overlap)?
+        .into_iter()
+        .map(|(_, points)| points)
+        .collect();
     write("soft_overlap", &csv)?;
     // The staged switch against the hand; the abrupt one against Rapier's
     // own (groups, one step apart), which it does not match: the first step

@@ -511,18 +511,8 @@ fn copies_of_a_collider_removed_after_the_cut_are_planned() {
         AddCollider(0),
         Kind(0, 0),
     ];
-    let mut on = Run::new(&cubes, true, true);
-    let mut off = Run::new(&cubes, false, true);
-    in_lockstep(&mut on, &mut off, &edits, |on, off| {
-        prop_assert_eq!(on.poses(), off.poses(), "the worlds moved apart");
-        prop_assert_eq!(on.touching(), off.touching(), "touching pairs differ");
-        prop_assert_eq!(on.live(), off.live(), "live pairs differ");
-        Ok(())
-    })
-    .unwrap();
+    planner_on_off_alike(&cubes, &edits);
 }
-
-
 
 /// Found by `the_planner_changes_nothing_a_user_sees` once soft bodies
 /// were removed in the random worlds: a soft body cut and then removed
@@ -545,14 +535,20 @@ fn a_piece_whose_source_was_removed_before_the_step_keeps_its_rules() {
         RemoveSoft(42),
         RemoveBody(9),
     ];
-    let mut on = Run::new(&cubes, true, true);
-    let mut off = Run::new(&cubes, false, true);
-    in_lockstep(&mut on, &mut off, &edits, |on, off| {
+    planner_on_off_alike(&cubes, &edits);
+    planned_alike(&cubes, &edits, |_| Ok(()));
+}
+
+/// The world stepped through `edits` with the planner on and off: the
+/// same poses, touching pairs and live pairs after every step.
+fn planner_on_off_alike(cubes: &[(f32, f32, usize)], edits: &[Edit]) {
+    let mut on = Run::new(cubes, true, true);
+    let mut off = Run::new(cubes, false, true);
+    in_lockstep(&mut on, &mut off, edits, |on, off| {
         prop_assert_eq!(on.poses(), off.poses(), "the worlds moved apart");
         prop_assert_eq!(on.touching(), off.touching(), "touching pairs differ");
         prop_assert_eq!(on.live(), off.live(), "live pairs differ");
         Ok(())
     })
     .unwrap();
-    planned_alike(&cubes, &edits, |_| Ok(()));
 }

@@ -10,10 +10,10 @@
 //! colliders, which Rapier copies from the source's with what the crate
 //! wrote on them, keep the project's settings of the source's colliders.
 //!
-//! The look costs nothing while the numbers of soft bodies and of rigid
-//! bodies stay the same (a cluster added to a soft body adds a proxy body),
-//! and a pass over the soft bodies and their clusters (not their particles)
-//! when one changes.
+//! The look costs one lookup per soft body while the numbers of soft bodies
+//! and of rigid bodies stay the same and every soft body is one the hooks
+//! have seen (a cluster added to a soft body adds a proxy body), and a pass
+//! over the soft bodies and their clusters (not their particles) otherwise.
 
 use hashbrown::HashMap;
 
@@ -123,9 +123,12 @@ impl RuleHooks {
             }
         }
         // A cluster added to a soft body adds its proxy to the bodies.
-        // A rule given to a soft body's root links its proxies.
+        // A rule given to a soft body's root links its proxies. A cut and a
+        // removal in one step may leave both numbers as they were: a soft
+        // body the hooks have not seen says so (one lookup per soft body).
         let counts = (soft_bodies.len(), if present { bodies.len() } else { 0 });
-        if counts == self.soft.counts && !(present && self.decide.rules.has_changes()) {
+        let unseen = || soft_bodies.iter().any(|(h, _)| !self.soft.known.contains_key(&h));
+        if counts == self.soft.counts && !(present && self.decide.rules.has_changes()) && !unseen() {
             return;
         }
         self.soft.counts = counts;

@@ -578,3 +578,32 @@ fn a_project_change_of_a_collider_after_a_cut_is_not_its_copys() {
     }
     assert_eq!(seen, [true, true], "a piece with the originals and one with the copies");
 }
+
+/// A bar cut in two whose source side the project removes before the next
+/// step (the numbers of soft and rigid bodies are then as they were before
+/// the cut): the piece left takes the bar's `NoPair` with the ground and
+/// falls through it.
+#[test]
+fn a_piece_whose_source_is_removed_before_the_step_keeps_the_rule() {
+    for way in WAYS {
+        let (mut world, floor) = on_ground();
+        let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
+        let root = world.soft_bodies[bar].root_body();
+        let mut hooks = RuleHooks::default();
+        give(&mut hooks, way, root, floor, CollisionRule::NoPair);
+        hooks.step(&mut world);
+        let counts = (world.soft_bodies.len(), world.bodies.len());
+        let cut = world.cut_soft_body(bar, &blade_at_x(0.1)).expect("the blade crosses the bar");
+        let pieces: Vec<SoftBodyHandle> = cut.bodies().filter(|&p| p != bar).collect();
+        world.remove_soft_body(bar);
+        let after = (world.soft_bodies.len(), world.bodies.len());
+        for _ in 0..STEPS {
+            hooks.step(&mut world);
+        }
+        assert!(!pieces.is_empty(), "{way:?}: the cut made a piece");
+        for piece in pieces {
+            let low = lowest(&world, piece);
+            assert!(low < -1.0, "{way:?}: piece {piece:?} rests at {low} (bodies {counts:?} before the cut, {after:?} after the removal)");
+        }
+    }
+}

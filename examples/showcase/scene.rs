@@ -523,12 +523,20 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
             let (low, high) = lows
                 .iter()
                 .fold((f32::MAX, f32::MIN), |(a, b), &y| (a.min(y), b.max(y)));
+            // Both halves hold the rope's entry about the ground.
+            let ground = world.colliders[floor]
+                .parent()
+                .expect("the floor has a body");
+            let kept = rope_pieces.iter().all(|&p| {
+                let root = world.soft_bodies[p].root_body();
+                hooks.rules().specific(root, ground) == CollisionRule::NoPair
+            });
             (
                 format!(
                     "cut at {:.1} s: a half fell to y = {low:.1}, one hangs to {high:.2}",
                     CUT as f32 / 60.0
                 ),
-                lows.len() == 2 && low < -1.0 && high > 1.5 && seen[12].live.is_none(),
+                lows.len() == 2 && low < -1.0 && high > 1.5 && kept && seen[12].live.is_none(),
             )
         },
     ];

@@ -34,6 +34,9 @@ pub(super) struct SoftBodies {
     counts: (usize, usize),
     /// The soft bodies seen so far, each as last seen.
     known: HashMap<SoftBodyHandle, Seen>,
+    /// Pieces get a copy of their source's rules, not its record (see
+    /// [`RuleHooks::set_pieces_copy_rules`]).
+    copy_to_pieces: bool,
 }
 
 /// A soft body as the hooks last saw it.
@@ -105,6 +108,37 @@ impl RuleHooks {
         self.follow_soft_body_set(soft_bodies, bodies);
     }
 
+    /// Whether the pieces of cuts and tears get a copy of their source's
+    /// rules, each in a record of its own, instead of sharing the source's
+    /// record (the default: a later edit through the source or any piece
+    /// reaches all of them, `docs/semantics.md`, "Soft bodies"). For a
+    /// project that keeps each piece's rules itself: the Bevy plugin copies
+    /// a torn entity's components onto each piece's entity and turns this on.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let bar = SoftBodyBuilder::cuboid(Vector::new(0.0, 2.0, 0.0), Vector::new(1.0, 0.25, 0.25), 6, 2, 2);
+    /// let bar = world.insert_soft_body(bar);
+    /// let root = world.soft_bodies[bar].root_body();
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.set_pieces_copy_rules(true);
+    /// hooks.rules_mut().set_personal(root, CollisionRule::NoResponse);
+    /// hooks.step(&mut world);
+    /// let blade = [Vector::new(0.1, -10.0, -10.0), Vector::new(0.1, 20.0, -10.0), Vector::new(0.1, -10.0, 20.0)];
+    /// let cut = world.cut_soft_body(bar, &blade).expect("the blade crosses the bar");
+    /// hooks.step(&mut world);
+    /// let roots: Vec<_> = cut.bodies().map(|p| world.soft_bodies[p].root_body()).collect();
+    /// // Each piece has the rule, in a record of its own.
+    /// assert!(roots.iter().all(|&r| hooks.rules().personal(r) == CollisionRule::NoResponse));
+    /// assert!(!hooks.rules().shares_rules(roots[0], roots[1]));
+    /// ```
+    pub fn set_pieces_copy_rules(&mut self, copy: bool) {
+        self.soft.copy_to_pieces = copy;
+    }
+
     /// [`follow_soft_bodies`](Self::follow_soft_bodies) where the world
     /// holds, or held, soft bodies.
     fn follow_soft_body_set(&mut self, soft_bodies: &SoftBodySet, bodies: &RigidBodySet) {
@@ -162,7 +196,7 @@ impl RuleHooks {
                 // sides now that are not it take them.
                 for root in from.map(SoftBody::root_body).into_iter().chain([body.root_body()]) {
                     if root != held.root {
-                        self.decide.rules.give_piece(held.root, root);
+                        self.decide.rules.give_piece(held.root, root, self.soft.copy_to_pieces);
                     }
                 }
                 let sides: [CollidersUnder; 2] = [

@@ -12,15 +12,31 @@ impl CollisionRuleSet {
     /// entries, and later edits through either), every entry another node
     /// holds about `source` is held about `piece` too, and `piece` gets
     /// `source`'s parent. Returns whether anything was given.
-    pub(crate) fn give_piece(&mut self, source: RigidBodyHandle, piece: RigidBodyHandle) -> bool {
+    ///
+    /// With `copy`, `piece` gets a record of its own with a copy of
+    /// `source`'s personal rule, group and specific entries instead of
+    /// sharing it (for a project that keeps each piece's rules itself, as
+    /// the Bevy plugin does with each piece's components).
+    pub(crate) fn give_piece(&mut self, source: RigidBodyHandle, piece: RigidBodyHandle, copy: bool) -> bool {
         let (from, to) = (Node::Body(source), Node::Body(piece));
         if self.is_removed(to) {
             return false;
         }
         let mut given = false;
-        if self.record(from).is_some_and(|r| !r.is_empty()) {
-            self.share_rules(from, to);
-            given = true;
+        match self.record(from).filter(|r| !r.is_empty()).cloned() {
+            Some(record) if copy => {
+                self.set_group(to, record.group);
+                self.set_personal(to, record.personal);
+                for (other, rule) in record.specific {
+                    self.set_specific(to, other, rule);
+                }
+                given = true;
+            }
+            Some(_) => {
+                self.share_rules(from, to);
+                given = true;
+            }
+            None => {}
         }
         if self.is_named(from) {
             let holders: Vec<(Node, CollisionRule)> = self.entries_about(from).collect();

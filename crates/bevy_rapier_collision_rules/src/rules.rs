@@ -13,12 +13,26 @@ use rapier_collision_rules::{CollisionRuleSet, RuleHooks};
 /// Live-pair overrides, policies, a custom calculator or a pair-created
 /// callback go through [`hooks_mut`](Self::hooks_mut), with bevy_rapier's
 /// handles (`RapierColliderHandle`, `RapierRigidBodyHandle`).
-#[derive(Component, Default)]
+#[derive(Component)]
 pub struct CollisionRules {
     hooks: RuleHooks,
     /// Where the context's `ColliderSet` was when it was last prepared:
     /// the hook finds its context by the set Rapier hands it.
     pub(crate) colliders_at: usize,
+}
+
+impl Default for CollisionRules {
+    fn default() -> Self {
+        let mut hooks = RuleHooks::default();
+        // Each piece of a torn soft body is an entity with its own copies of
+        // the rule components: its rules are its own (`docs/bevy.md`, "Soft
+        // bodies").
+        hooks.set_pieces_copy_rules(true);
+        CollisionRules {
+            hooks,
+            colliders_at: 0,
+        }
+    }
 }
 
 impl CollisionRules {

@@ -189,6 +189,51 @@ fn the_pieces_of_a_cut_or_a_tear_keep_the_soft_bodys_rules() {
     }
 }
 
+/// The pieces' rules are their own: a new `PersonalRule` on one piece
+/// changes that piece alone, in its component and in the rule set.
+#[test]
+fn a_pieces_rules_are_its_own() {
+    let mut sim = Sim::new();
+    let bar = sim.spawn((
+        Transform::from_xyz(0.0, 0.3, 0.0),
+        SoftBody::cuboid(Vec3::new(1.0, 0.25, 0.25), 6, 2, 2),
+        PersonalRule(NoPair),
+    ));
+    sim.spawn(floor());
+    sim.run(1);
+    let pieces = split(&mut sim, bar, Split::Cut);
+    sim.run(2);
+    let (first, other) = (pieces[0], pieces[1]);
+    sim.entity_mut(first).insert(PersonalRule(Normal));
+    sim.run(FRAMES);
+    let context = sim.context();
+    let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
+    let root = |e: Entity| set.soft_body(e).unwrap().root_body();
+    let (a, b) = (root(first), root(other));
+    let rules = sim
+        .app
+        .world()
+        .get::<CollisionRules>(context)
+        .unwrap()
+        .rules();
+    assert_eq!(rules.personal(a), Normal, "the edited piece's rule");
+    assert_eq!(
+        rules.personal(b),
+        NoPair,
+        "the other piece keeps its own rule"
+    );
+    assert!(!rules.shares_rules(a, b), "the pieces share a record");
+    let (low_first, low_other) = (lowest(&mut sim, first), lowest(&mut sim, other));
+    assert!(
+        low_first > -0.1,
+        "the piece now Normal rests on the floor: {low_first}"
+    );
+    assert!(
+        low_other < -1.0,
+        "the other piece still falls through: {low_other}"
+    );
+}
+
 #[test]
 fn a_despawned_soft_body_leaves_no_rules_behind() {
     let mut sim = Sim::new();

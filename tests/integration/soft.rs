@@ -5,6 +5,7 @@
 
 use super::rapier::prelude::*;
 use super::rules::{CollisionRule, RuleHooks};
+use super::world::edges_across;
 use super::{at, blade_at_x, cube, pose_bits, slab, soft_bar, soft_block};
 
 const STEPS: usize = 90;
@@ -324,14 +325,7 @@ fn a_removed_soft_body_leaves_no_rule_behind() {
 
 /// The edges of `body` that cross x = 0: tearing them splits a bar.
 fn edges_across_middle(world: &PhysicsWorld, body: SoftBodyHandle) -> Vec<u32> {
-    let soft = &world.soft_bodies[body];
-    let left = |v: u32| soft.particle_position(v as usize).x < 0.0;
-    (0..soft.edges().len() as u32)
-        .filter(|&e| {
-            let [a, b] = soft.edges()[e as usize].vertices;
-            left(a) != left(b)
-        })
-        .collect()
+    edges_across(&world.soft_bodies[body], 0.0)
 }
 
 /// A bar over the ground with `rule` between the two, split after one step

@@ -161,6 +161,22 @@ impl Pulled {
     }
 }
 
+/// The mean x of a soft body's particles.
+fn middle_x(body: &SoftBody) -> f32 {
+    body.particle_positions().map(|p| p.x).sum::<f32>() / body.num_particles().max(1) as f32
+}
+
+/// The edges of a soft body that cross the plane (or line) at `x`.
+pub fn edges_across(body: &SoftBody, x: f32) -> Vec<u32> {
+    let left = |v: u32| body.particle_position(v as usize).x < x;
+    (0..body.edges().len() as u32)
+        .filter(|&e| {
+            let [a, b] = body.edges()[e as usize].vertices;
+            left(a) != left(b)
+        })
+        .collect()
+}
+
 /// A collider's settings as its project set them.
 #[derive(Clone, Copy, Debug)]
 struct Project {
@@ -279,6 +295,13 @@ impl Run {
         self.bodies == other.bodies && self.colliders == other.colliders && self.softs == other.softs
     }
 
+    /// The soft body an edit names by `i` (among those added), if it is
+    /// still in the world.
+    fn soft(&self, i: usize) -> Option<(SoftBodyHandle, &SoftBody)> {
+        let soft = *self.softs.get(i % self.softs.len().max(1))?;
+        Some((soft, self.world.soft_bodies.get(soft)?))
+    }
+
     /// Names a soft body's root body and surface colliders in the edits.
     fn adopt_soft(&mut self, soft: SoftBodyHandle) {
         let Some(body) = self.world.soft_bodies.get(soft) else {
@@ -359,41 +382,23 @@ impl Run {
                 self.adopt_soft(soft);
             }
             Edit::CutSoft(i) => {
-                let Some(&soft) = self.softs.get(i % self.softs.len().max(1)) else {
+                let Some((soft, body)) = self.soft(i) else {
                     return;
                 };
-                let Some(body) = self.world.soft_bodies.get(soft) else {
-                    return;
-                };
-                let n = body.num_particles().max(1) as f32;
-                let middle = body.particle_positions().map(|p| p.x).sum::<f32>() / n + 0.01;
+                let middle = middle_x(body) + 0.01;
                 self.world.cut_soft_body(soft, &blade_at_x(middle));
                 self.adopt_pieces();
             }
             Edit::TearSoft(i) => {
-                let Some(&soft) = self.softs.get(i % self.softs.len().max(1)) else {
+                let Some((soft, body)) = self.soft(i) else {
                     return;
                 };
-                let Some(body) = self.world.soft_bodies.get(soft) else {
-                    return;
-                };
-                let n = body.num_particles().max(1) as f32;
-                let middle = body.particle_positions().map(|p| p.x).sum::<f32>() / n;
-                let left = |v: u32| body.particle_position(v as usize).x < middle;
-                let edges: Vec<u32> = (0..body.edges().len() as u32)
-                    .filter(|&e| {
-                        let [a, b] = body.edges()[e as usize].vertices;
-                        left(a) != left(b)
-                    })
-                    .collect();
+                let edges = edges_across(body, middle_x(body));
                 self.world.tear_soft_body(soft, &edges, &[]);
                 self.adopt_pieces();
             }
             Edit::RemoveSoft(i) => {
-                let Some(&soft) = self.softs.get(i % self.softs.len().max(1)) else {
-                    return;
-                };
-                let Some(body) = self.world.soft_bodies.get(soft) else {
+                let Some((soft, body)) = self.soft(i) else {
                     return;
                 };
                 let meshes: Vec<ColliderHandle> = body.meshes().map(|m| m.collider()).collect();

@@ -1,7 +1,7 @@
 //! The rules an entity carries, as components (`docs/bevy.md`).
 
+use crate::collision_rules::{CollisionGroup, CollisionRule};
 use bevy::prelude::*;
-use rapier_collision_rules::{CollisionGroup, CollisionRule};
 
 /// The entity's collision group, from the [`RuleTable`](super::RuleTable)
 /// its physics context uses. On a rigid body it is the body's group (its

@@ -3,14 +3,14 @@
 //! difference is edited, so that `OnChange` recalculates just the pairs an
 //! edit can affect (`docs/bevy.md`).
 
+use crate::collision_rules::{CollisionRule, CollisionRuleSet, Node};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
-use bevy_rapier3d::plugin::context::RapierRigidBodySet;
-use bevy_rapier3d::prelude::{
+use bevy_rapier::plugin::context::RapierRigidBodySet;
+use bevy_rapier::prelude::{
     RapierColliderHandle, RapierContextEntityLink, RapierRigidBodyHandle, RapierSoftBodyHandle,
     SoftBodyTearEvent,
 };
-use rapier_collision_rules::{CollisionRule, CollisionRuleSet, Node};
 
 use super::ledger::{Applied, Ledger, Place};
 use super::{CollisionRules, PersonalRule, RuleGroup, SpecificRules};

@@ -3,8 +3,8 @@
 //! same context (`docs/bevy.md`).
 
 use bevy::prelude::*;
-use bevy_rapier3d::prelude::{RapierContextEntityLink, RapierRigidBodyHandle};
-use bevy_rapier3d::rapier::prelude::RigidBodyHandle;
+use bevy_rapier::prelude::{RapierContextEntityLink, RapierRigidBodyHandle};
+use bevy_rapier::rapier::prelude::RigidBodyHandle;
 
 use super::CollisionRules;
 use super::ledger::Ledger;

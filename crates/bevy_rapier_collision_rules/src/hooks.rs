@@ -2,16 +2,16 @@
 //! hooked colliders during the step, and a project's own hooks can ask
 //! them too (`docs/bevy.md`).
 
+use crate::collision_rules::RuleHooks;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
-use bevy_rapier3d::pipeline::{
+use bevy_rapier::pipeline::{
     BevyPhysicsHooks, ContactModificationContextView, PairFilterContextView,
 };
-use bevy_rapier3d::prelude::RapierContextEntityLink;
-use bevy_rapier3d::rapier::prelude::{
+use bevy_rapier::prelude::RapierContextEntityLink;
+use bevy_rapier::rapier::prelude::{
     ActiveHooks, ColliderHandle, ColliderSet, PhysicsHooks, SolverFlags,
 };
-use rapier_collision_rules::RuleHooks;
 
 use super::CollisionRules;
 use super::misuse::HooksProbe;
@@ -56,8 +56,8 @@ impl HookedPair for ContactModificationContextView<'_, '_> {
 /// Only bevy_rapier's two views are pairs the hooks are asked about.
 mod sealed {
     pub trait Sealed {}
-    impl Sealed for bevy_rapier3d::pipeline::PairFilterContextView<'_> {}
-    impl Sealed for bevy_rapier3d::pipeline::ContactModificationContextView<'_, '_> {}
+    impl Sealed for bevy_rapier::pipeline::PairFilterContextView<'_> {}
+    impl Sealed for bevy_rapier::pipeline::ContactModificationContextView<'_, '_> {}
 }
 
 impl CollisionRulesHooks<'_, '_> {

@@ -4,8 +4,8 @@
 
 use std::collections::{HashMap, HashSet};
 
+use crate::collision_rules::{CollisionGroup, CollisionRule, Node};
 use bevy::prelude::*;
-use rapier_collision_rules::{CollisionGroup, CollisionRule, Node};
 
 /// Where an entity's rules live: its context entity and its node there.
 pub(crate) type Place = (Entity, Node);

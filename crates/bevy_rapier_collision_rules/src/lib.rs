@@ -1,4 +1,5 @@
-//! Hierarchical collision rules for [bevy_rapier3d] users, as components:
+//! Hierarchical collision rules for [bevy_rapier3d] and [bevy_rapier2d]
+//! users, as components:
 //! the rules of [`rapier_collision_rules`] (per-pair specific rules,
 //! personal rules and collision groups, from the most specific to the most
 //! general across compound hierarchies) with bevy_rapier's world, entities
@@ -44,7 +45,33 @@
 //! See `docs/bevy.md` for how the components map to the rules and which
 //! bevy_rapier settings the plugin combines with the project's.
 //!
+//! One source serves both dimensions, as bevy_rapier's does: the crate
+//! `bevy_rapier_collision_rules` over bevy_rapier3d, and
+//! `bevy_rapier_collision_rules2d` over bevy_rapier2d, with the same items
+//! under the same names (`docs/architecture.md`, "Bevy in two
+//! dimensions"). The examples here are written for 3D; in 2D they read
+//! `bevy_rapier2d` and `bevy_rapier_collision_rules2d`, and the shapes
+//! take two extents.
+//!
 //! [bevy_rapier3d]: https://docs.rs/bevy_rapier3d
+//! [bevy_rapier2d]: https://docs.rs/bevy_rapier2d
+
+#[cfg(not(any(feature = "dim2", feature = "dim3")))]
+compile_error!(
+    "this source needs a dimension: build it as bevy_rapier_collision_rules (3D) or \
+     bevy_rapier_collision_rules2d (2D)"
+);
+
+// The dimension's bevy_rapier and the core's tree for the same Rapier, under
+// one name each, so that every file is written once for both.
+#[cfg(feature = "dim2")]
+extern crate bevy_rapier2d as bevy_rapier;
+#[cfg(feature = "dim3")]
+extern crate bevy_rapier3d as bevy_rapier;
+#[cfg(feature = "dim2")]
+use rapier_collision_rules::dim2 as collision_rules;
+#[cfg(feature = "dim3")]
+use rapier_collision_rules::dim3 as collision_rules;
 
 mod components;
 mod edits;
@@ -64,17 +91,17 @@ pub use plugin::{CollisionRulesPlugin, RulesSystems};
 pub use rules::CollisionRules;
 pub use table::{ContextRuleTable, RuleTable};
 
-/// The main crate, for what is not re-exported here (its `dim3` module,
-/// its Rapier).
-pub use rapier_collision_rules;
-/// The main crate's types, so that a project that depends only on this
-/// crate (and bevy_rapier3d) can name everything [`CollisionRules`] and
-/// its [`RuleHooks`] take and give.
-pub use rapier_collision_rules::{
+/// The main crate's types for this crate's dimension, so that a project
+/// that depends only on this crate (and its bevy_rapier) can name
+/// everything [`CollisionRules`] and its [`RuleHooks`] take and give.
+pub use collision_rules::{
     CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
     GroupTable, ManifoldUpdate, Node, PairCreated, Problem, RecalculationPolicy, RuleError,
     RuleHooks, Stage, StepStats, WorldRef,
 };
+/// The main crate, for what is not re-exported here (its dimension's
+/// module, its Rapier).
+pub use rapier_collision_rules;
 
 /// The plugin, the components and the rules' own types. `Node` is left
 /// out: `bevy::prelude` has a `Node` of its own (the UI's) when Bevy's UI
@@ -91,5 +118,5 @@ pub mod prelude {
 /// runs as this crate's doc tests: the guide's code is a user's, who
 /// depends on this crate, bevy and bevy_rapier3d.
 #[doc = include_str!("../../../docs/bevy.md")]
-#[cfg(doctest)]
+#[cfg(all(doctest, feature = "dim3"))]
 pub struct BevyGuide;

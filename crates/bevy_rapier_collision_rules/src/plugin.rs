@@ -3,9 +3,9 @@
 use bevy::ecs::intern::Interned;
 use bevy::ecs::schedule::ScheduleLabel;
 use bevy::prelude::*;
-use bevy_rapier3d::plugin::PhysicsSet;
-use bevy_rapier3d::plugin::context::RapierContextSimulation;
-use bevy_rapier3d::prelude::{
+use bevy_rapier::plugin::PhysicsSet;
+use bevy_rapier::plugin::context::RapierContextSimulation;
+use bevy_rapier::prelude::{
     ActiveCollisionTypes, ActiveHooks, CollisionGroups, RapierRigidBodyHandle, SolverGroups,
 };
 

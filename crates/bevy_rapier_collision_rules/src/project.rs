@@ -4,7 +4,7 @@
 //! rules combine with what it wrote before the next step (`docs/bevy.md`).
 
 use bevy::prelude::*;
-use bevy_rapier3d::prelude::{
+use bevy_rapier::prelude::{
     ActiveCollisionTypes, ActiveHooks, CollisionGroups, RapierColliderHandle,
     RapierContextEntityLink, SolverGroups,
 };

@@ -1,9 +1,9 @@
 //! The rules of one physics context: a component on the context entity,
 //! beside bevy_rapier's own (`docs/bevy.md`).
 
+use crate::collision_rules::{CollisionRuleSet, RuleHooks};
 use bevy::prelude::*;
-use bevy_rapier3d::rapier::prelude::ColliderSet;
-use rapier_collision_rules::{CollisionRuleSet, RuleHooks};
+use bevy_rapier::rapier::prelude::ColliderSet;
 
 /// The rules of one physics context (one Rapier world): every entity's
 /// rules, the live pairs and their overrides. The plugin adds it to every

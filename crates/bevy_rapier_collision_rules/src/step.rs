@@ -4,7 +4,7 @@
 //! (`docs/bevy.md`).
 
 use bevy::prelude::*;
-use bevy_rapier3d::plugin::context::{
+use bevy_rapier::plugin::context::{
     RapierContextColliders, RapierContextSimulation, RapierRigidBodySet,
 };
 

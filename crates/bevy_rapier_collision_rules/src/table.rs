@@ -1,8 +1,8 @@
 //! The group table and the default rule, shared by every physics context
 //! or owned by one (`docs/bevy.md`).
 
+use crate::collision_rules::{CollisionGroup, CollisionRule, GroupTable};
 use bevy::prelude::*;
-use rapier_collision_rules::{CollisionGroup, CollisionRule, GroupTable};
 
 /// The group table and the default rule. As a resource it is the table of
 /// every physics context; a context entity that carries a

@@ -7,6 +7,14 @@
 //! which records what this crate logs, and the tests take turns so that
 //! each reads only its own app's records.
 
+// One test source for both crates (the 2D one links this folder).
+#[cfg(feature = "dim2")]
+extern crate bevy_rapier2d as bevy_rapier;
+#[cfg(feature = "dim3")]
+extern crate bevy_rapier3d as bevy_rapier;
+#[cfg(feature = "dim2")]
+extern crate bevy_rapier_collision_rules2d as bevy_rapier_collision_rules;
+
 use std::sync::{Mutex, MutexGuard, PoisonError};
 use std::time::Duration;
 
@@ -15,8 +23,16 @@ use bevy::app::Plugins;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
+use bevy_rapier::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::prelude::*;
+
+/// The floor's box, in either dimension.
+fn floor_box() -> Collider {
+    #[cfg(feature = "dim3")]
+    return Collider::cuboid(5.0, 0.5, 5.0);
+    #[cfg(feature = "dim2")]
+    Collider::cuboid(5.0, 0.5)
+}
 
 /// Every warning this crate logged since the current test began.
 static WARNINGS: Mutex<Vec<String>> = Mutex::new(Vec::new());
@@ -77,10 +93,7 @@ fn run<M>(physics: impl Plugins<M>) -> f32 {
     app.cleanup();
     let floor = app
         .world_mut()
-        .spawn((
-            Transform::from_xyz(0.0, -0.5, 0.0),
-            Collider::cuboid(5.0, 0.5, 5.0),
-        ))
+        .spawn((Transform::from_xyz(0.0, -0.5, 0.0), floor_box()))
         .id();
     let ball = app
         .world_mut()

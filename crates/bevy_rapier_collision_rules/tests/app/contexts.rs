@@ -1,9 +1,9 @@
 //! Several physics contexts, each with its own rules.
 
 use CollisionRule::*;
+use bevy_rapier::plugin::context::RapierContextSimulation;
+use bevy_rapier::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::plugin::context::RapierContextSimulation;
-use bevy_rapier3d::prelude::*;
 
 use super::scene::{Sim, ball, fell_through, floor, rests};
 

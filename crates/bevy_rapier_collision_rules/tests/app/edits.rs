@@ -3,10 +3,10 @@
 
 use CollisionRule::*;
 use bevy::prelude::*;
+use bevy_rapier::prelude::Sleeping;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::prelude::Sleeping;
 
-use super::scene::{Sim, ball, fell_through, floor, rests};
+use super::scene::{Sim, ball, cuboid, fell_through, floor, rests};
 
 fn asleep(sim: &Sim, entity: Entity) -> bool {
     sim.app
@@ -84,10 +84,7 @@ fn a_changed_and_then_removed_rule_is_taken_back() {
 fn a_despawned_entity_leaves_no_rules_behind() {
     let mut sim = Sim::new();
     let f = sim.spawn(floor());
-    let wall = sim.spawn((
-        Transform::from_xyz(3.0, 1.0, 0.0),
-        bevy_rapier3d::prelude::Collider::cuboid(0.1, 1.0, 1.0),
-    ));
+    let wall = sim.spawn((Transform::from_xyz(3.0, 1.0, 0.0), cuboid(0.1, 1.0, 1.0)));
     let ghost = sim.spawn((
         ball(0.0, 2.0),
         SpecificRules::new()

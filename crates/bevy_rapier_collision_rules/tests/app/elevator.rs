@@ -11,10 +11,10 @@
 
 use CollisionRule::*;
 use bevy::prelude::*;
+use bevy_rapier::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::prelude::*;
 
-use super::scene::{DT, Sim};
+use super::scene::{DT, Sim, cuboid};
 
 /// The platform's speed while it rises, in m/s.
 const LIFT: f32 = 1.0;
@@ -52,19 +52,19 @@ fn elevator(sim: &mut Sim) -> Elevator {
     let platform = sim.spawn((
         Transform::default(),
         RigidBody::KinematicPositionBased,
-        Collider::cuboid(1.0, 0.1, 1.0),
+        cuboid(1.0, 0.1, 1.0),
     ));
     let mount = sim.spawn((
         Transform::from_xyz(4.0, 1.0, 0.0),
         RigidBody::Fixed,
-        Collider::cuboid(1.0, 0.1, 1.0),
+        cuboid(1.0, 0.1, 1.0),
     ));
     sim.run(1);
     let crate_on = |parent| {
         (
             Transform::from_xyz(0.0, ON_TOP + 0.01, 0.0),
             RigidBody::Dynamic,
-            Collider::cuboid(0.25, 0.25, 0.25),
+            cuboid(0.25, 0.25, 0.25),
             ChildOf(parent),
         )
     };

@@ -3,8 +3,8 @@
 
 use CollisionRule::*;
 use bevy::prelude::*;
+use bevy_rapier::prelude::GravityScale;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::prelude::GravityScale;
 
 use super::scene::{Sim, ball, fell_through, floor};
 
@@ -75,7 +75,7 @@ fn without_the_pelvis_rule_the_same_limb_lands() {
 #[test]
 fn without_the_hierarchy_the_parent_map_is_the_projects() {
     let mut sim = Sim::with_plugins(
-        bevy_rapier3d::prelude::RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
+        bevy_rapier::prelude::RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
         CollisionRulesPlugin::default().without_hierarchy(),
     );
     let pelvis = sim.spawn((ball(0.0, 3.0), GravityScale(0.0)));

@@ -3,6 +3,15 @@
 //! despawns, the project's own settings and hooks, bevy_rapier's stepping
 //! modes and several contexts.
 
+// One test source for both crates (the 2D one links this folder): each
+// names its dimension's bevy_rapier and crate under one name.
+#[cfg(feature = "dim2")]
+extern crate bevy_rapier2d as bevy_rapier;
+#[cfg(feature = "dim3")]
+extern crate bevy_rapier3d as bevy_rapier;
+#[cfg(feature = "dim2")]
+extern crate bevy_rapier_collision_rules2d as bevy_rapier_collision_rules;
+
 mod contexts;
 mod edits;
 mod elevator;
@@ -10,5 +19,6 @@ mod hierarchy;
 mod outcomes;
 mod project;
 mod scene;
+#[cfg(feature = "dim3")]
 mod soft;
 mod stepping;

@@ -5,7 +5,7 @@ use CollisionRule::*;
 use bevy::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
 
-use super::scene::{Sim, ball, fell_through, floor, rests};
+use super::scene::{Sim, ball, cuboid, fell_through, floor, rests};
 
 /// How the rule between the ball and the floor is given.
 #[derive(Clone, Copy, Debug)]
@@ -114,22 +114,22 @@ fn a_sensor_sees_what_the_rule_lets_through() {
         let mut sim = Sim::new();
         let zone = sim.spawn((
             Transform::default(),
-            bevy_rapier3d::prelude::Collider::cuboid(1.0, 1.0, 1.0),
-            bevy_rapier3d::prelude::Sensor,
+            cuboid(1.0, 1.0, 1.0),
+            bevy_rapier::prelude::Sensor,
         ));
         let b = sim.spawn((
             ball(0.0, 0.0),
-            bevy_rapier3d::prelude::GravityScale(0.0),
+            bevy_rapier::prelude::GravityScale(0.0),
             SpecificRules::new().with(zone, rule),
         ));
         sim.run(5);
         let context = sim.context();
         let world = sim.app.world();
         let simulation = world
-            .get::<bevy_rapier3d::plugin::context::RapierContextSimulation>(context)
+            .get::<bevy_rapier::plugin::context::RapierContextSimulation>(context)
             .unwrap();
         let colliders = world
-            .get::<bevy_rapier3d::plugin::context::RapierContextColliders>(context)
+            .get::<bevy_rapier::plugin::context::RapierContextColliders>(context)
             .unwrap();
         let inside = simulation.intersection_pair(colliders, zone, b) == Some(true);
         assert_eq!(inside, expected, "{rule:?}: intersecting {inside}");

@@ -4,9 +4,9 @@
 use CollisionRule::*;
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
+use bevy_rapier::prelude::*;
+use bevy_rapier::rapier::prelude::ActiveHooks as RapierHooks;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::prelude::*;
-use bevy_rapier3d::rapier::prelude::ActiveHooks as RapierHooks;
 
 use super::scene::{Sim, ball, fell_through, floor, rests};
 

@@ -6,12 +6,12 @@ use bevy::app::Plugins;
 use bevy::ecs::system::SystemParamItem;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::pipeline::BevyPhysicsHooks;
-use bevy_rapier3d::plugin::context::{
+use bevy_rapier::pipeline::BevyPhysicsHooks;
+use bevy_rapier::plugin::context::{
     DefaultRapierContext, RapierContextColliders, RapierContextSimulation, RapierRigidBodySet,
 };
-use bevy_rapier3d::prelude::*;
+use bevy_rapier::prelude::*;
+use bevy_rapier_collision_rules::prelude::*;
 
 pub const DT: f32 = 1.0 / 60.0;
 
@@ -96,7 +96,7 @@ impl Sim {
     }
 
     /// The Rapier handle of an entity's rigid body.
-    pub fn body(&self, entity: Entity) -> bevy_rapier3d::rapier::prelude::RigidBodyHandle {
+    pub fn body(&self, entity: Entity) -> bevy_rapier::rapier::prelude::RigidBodyHandle {
         self.app
             .world()
             .get::<RapierRigidBodyHandle>(entity)
@@ -179,7 +179,7 @@ impl Sim {
     pub fn collider<R>(
         &mut self,
         entity: Entity,
-        read: impl FnOnce(&rapier3d_collider::Collider) -> R,
+        read: impl FnOnce(&rapier_collider::Collider) -> R,
     ) -> R {
         let context = self.context();
         let colliders = self
@@ -193,16 +193,35 @@ impl Sim {
 }
 
 /// Rapier's collider type, through bevy_rapier.
-pub mod rapier3d_collider {
-    pub use bevy_rapier3d::rapier::prelude::Collider;
+pub mod rapier_collider {
+    pub use bevy_rapier::rapier::prelude::Collider;
+}
+
+/// A box with these half extents (the third is dropped in 2D).
+pub fn cuboid(hx: f32, hy: f32, hz: f32) -> Collider {
+    #[cfg(feature = "dim3")]
+    return Collider::cuboid(hx, hy, hz);
+    #[cfg(feature = "dim2")]
+    {
+        let _ = hz;
+        Collider::cuboid(hx, hy)
+    }
+}
+
+/// A vector of the dimension (`z` is dropped in 2D).
+pub fn vect(x: f32, y: f32, z: f32) -> Vect {
+    #[cfg(feature = "dim3")]
+    return Vect::new(x, y, z);
+    #[cfg(feature = "dim2")]
+    {
+        let _ = z;
+        Vect::new(x, y)
+    }
 }
 
 /// A fixed floor whose top is at y = 0.
 pub fn floor() -> impl Bundle {
-    (
-        Transform::from_xyz(0.0, -0.5, 0.0),
-        Collider::cuboid(5.0, 0.5, 5.0),
-    )
+    (Transform::from_xyz(0.0, -0.5, 0.0), cuboid(5.0, 0.5, 5.0))
 }
 
 /// A dynamic ball of radius 0.25 at (x, y).

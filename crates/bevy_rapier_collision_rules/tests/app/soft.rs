@@ -7,9 +7,9 @@
 use CollisionRule::*;
 use bevy::ecs::system::RunSystemOnce;
 use bevy::prelude::*;
+use bevy_rapier::plugin::context::RapierRigidBodySet;
+use bevy_rapier::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::plugin::context::RapierRigidBodySet;
-use bevy_rapier3d::prelude::*;
 
 use super::scene::{Sim, floor};
 

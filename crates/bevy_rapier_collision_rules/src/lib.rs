@@ -81,6 +81,7 @@ mod ledger;
 mod misuse;
 mod plugin;
 mod project;
+mod queries;
 mod rules;
 mod step;
 mod table;
@@ -88,6 +89,7 @@ mod table;
 pub use components::{PersonalRule, RuleGroup, SpecificRules};
 pub use hooks::{CollisionRulesHooks, HookedPair};
 pub use plugin::{CollisionRulesPlugin, RulesSystems};
+pub use queries::{ControllerFollowsRules, EntityExplanation, RuleQueries};
 pub use rules::CollisionRules;
 pub use table::{ContextRuleTable, RuleTable};
 
@@ -109,8 +111,8 @@ pub use rapier_collision_rules;
 pub mod prelude {
     pub use super::{
         CollisionGroup, CollisionRule, CollisionRules, CollisionRulesHooks, CollisionRulesPlugin,
-        ContextRuleTable, ManifoldUpdate, PersonalRule, RecalculationPolicy, RuleGroup, RuleHooks,
-        RuleTable, SpecificRules, WorldRef,
+        ContextRuleTable, ControllerFollowsRules, ManifoldUpdate, PersonalRule,
+        RecalculationPolicy, RuleGroup, RuleHooks, RuleQueries, RuleTable, SpecificRules, WorldRef,
     };
 }
 

@@ -14,6 +14,7 @@ use super::hierarchy::follow_hierarchy;
 use super::ledger::Ledger;
 use super::misuse::check_hooks;
 use super::project::notice_project_settings;
+use super::queries::{filter_controllers, restore_controller};
 use super::step::{finish_contexts, prepare_contexts};
 use super::{CollisionRules, ContextRuleTable, PersonalRule, RuleGroup, RuleTable, SpecificRules};
 
@@ -142,6 +143,16 @@ impl Plugin for CollisionRulesPlugin {
                 .in_set(RulesSystems::Prepare),
         );
         app.add_systems(self.schedule, finish_contexts.in_set(RulesSystems::Finish));
+        // Character controllers that follow the rules decide what they may
+        // touch right before bevy_rapier moves them (`docs/bevy.md`,
+        // "Queries and character controllers").
+        app.add_systems(
+            self.schedule,
+            filter_controllers
+                .in_set(PhysicsSet::SyncBackend)
+                .before(bevy_rapier::plugin::systems::update_character_controls),
+        )
+        .add_observer(restore_controller);
     }
 }
 

@@ -18,6 +18,7 @@ mod elevator;
 mod hierarchy;
 mod outcomes;
 mod project;
+mod queries;
 mod scene;
 #[cfg(feature = "dim3")]
 mod soft;

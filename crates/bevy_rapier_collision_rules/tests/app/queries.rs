@@ -1,0 +1,248 @@
+//! Queries and character controllers that see the rules: a controller
+//! walks through a door its rule opens and is stopped by a `Normal` wall
+//! behind it, a ray passes the door and hits the wall, and the pair
+//! questions answer with entities.
+
+use CollisionRule::*;
+use bevy::prelude::*;
+use bevy_rapier::control::{ControllerFilterPredicate, KinematicCharacterController};
+use bevy_rapier::prelude::*;
+use bevy_rapier_collision_rules::prelude::*;
+use bevy_rapier_collision_rules::{EntityExplanation, Stage};
+
+use super::scene::{Sim, ball, cuboid, floor, vect};
+
+/// The door's and the wall's x; the character starts at 0.
+const DOOR_X: f32 = 2.0;
+const WALL_X: f32 = 6.0;
+/// The character's radius and its step each frame.
+const RADIUS: f32 = 0.3;
+const STEP: f32 = 0.1;
+
+/// A thin fixed slab across the x axis.
+fn slab(x: f32) -> impl Bundle {
+    (Transform::from_xyz(x, 1.0, 0.0), cuboid(0.1, 1.0, 1.0))
+}
+
+/// Moves every controller along +x each frame.
+fn push(mut controllers: Query<&mut KinematicCharacterController>) {
+    for mut controller in &mut controllers {
+        controller.translation = Some(vect(STEP, 0.0, 0.0));
+    }
+}
+
+struct Corridor {
+    sim: Sim,
+    door: Entity,
+    wall: Entity,
+    character: Entity,
+}
+
+/// A character at x = 0 facing a door and a wall behind it, with `rule`
+/// between it and the door (`None`: no rule), following the rules or not.
+fn corridor(rule: Option<CollisionRule>, follows: bool) -> Corridor {
+    let mut sim = Sim::new();
+    sim.app.add_systems(Update, push);
+    let door = sim.spawn(slab(DOOR_X));
+    let wall = sim.spawn(slab(WALL_X));
+    let character = sim.spawn((
+        Transform::from_xyz(0.0, 1.0, 0.0),
+        RigidBody::KinematicPositionBased,
+        Collider::ball(RADIUS),
+        KinematicCharacterController::default(),
+    ));
+    if let Some(rule) = rule {
+        sim.entity_mut(character)
+            .insert(SpecificRules::new().with(door, rule));
+    }
+    if follows {
+        sim.entity_mut(character)
+            .insert(ControllerFollowsRules::default());
+    }
+    Corridor {
+        sim,
+        door,
+        wall,
+        character,
+    }
+}
+
+/// Where the character stops in front of a slab at `x` (its face at
+/// `x - 0.1`, the controller's offset between).
+fn stopped_before(at: f32, x: f32) -> bool {
+    let face = x - 0.1 - RADIUS;
+    (face - 0.1..=face + 1e-3).contains(&at)
+}
+
+const FRAMES: usize = 90;
+
+#[test]
+fn a_controller_walks_through_the_door_its_rule_opens_and_is_stopped_by_the_wall() {
+    for rule in [NoPair, NoContacts, NoResponse] {
+        let mut c = corridor(Some(rule), true);
+        c.sim.run(FRAMES);
+        let x = c.sim.at(c.character).x;
+        assert!(
+            stopped_before(x, WALL_X),
+            "{rule:?} with the door: the character passes it and stops at the wall, x = {x}"
+        );
+    }
+    // A Normal rule, no rule, and the rules not followed: the door stops it.
+    for (rule, follows) in [(Some(Normal), true), (None, true), (Some(NoPair), false)] {
+        let mut c = corridor(rule, follows);
+        c.sim.run(FRAMES);
+        let x = c.sim.at(c.character).x;
+        assert!(
+            stopped_before(x, DOOR_X),
+            "{rule:?}, following the rules: {follows}: the door stops the character, x = {x}"
+        );
+    }
+}
+
+#[test]
+fn a_controllers_own_predicate_is_asked_too_and_comes_back_alone() {
+    let mut c = corridor(Some(NoPair), true);
+    let wall = c.wall;
+    c.sim
+        .entity_mut(c.character)
+        .get_mut::<KinematicCharacterController>()
+        .unwrap()
+        .filter_predicate = Some(ControllerFilterPredicate::new(move |e, _| e != wall));
+    c.sim.run(FRAMES);
+    let x = c.sim.at(c.character).x;
+    assert!(
+        x > WALL_X + 1.0,
+        "the rules open the door, the project's predicate the wall: x = {x}"
+    );
+    // Without the component the project's predicate is alone again: back
+    // at the start, the door stops the character.
+    c.sim
+        .entity_mut(c.character)
+        .remove::<ControllerFollowsRules>()
+        .insert(Transform::from_xyz(0.0, 1.0, 0.0));
+    c.sim.run(FRAMES);
+    let x = c.sim.at(c.character).x;
+    assert!(
+        stopped_before(x, DOOR_X),
+        "the door stops it again: x = {x}"
+    );
+    let controller = c
+        .sim
+        .app
+        .world()
+        .get::<KinematicCharacterController>(c.character);
+    let predicate = controller.unwrap().filter_predicate.clone().unwrap();
+    assert!(
+        !predicate.test(c.wall, &rapier_ball()),
+        "the project's own predicate is the one on the controller"
+    );
+    assert!(predicate.test(c.door, &rapier_ball()));
+}
+
+/// A Rapier collider to hand a predicate (it reads only the entity).
+fn rapier_ball() -> bevy_rapier::rapier::prelude::Collider {
+    bevy_rapier::rapier::prelude::ColliderBuilder::ball(0.1).build()
+}
+
+/// The first collider hit by a ray along +x from the character's start,
+/// with the character's rules as the filter (`None` when the character is
+/// not in a context with rules).
+fn first_hit(
+    source: In<Entity>,
+    context: bevy_rapier::plugin::ReadRapierContext,
+    rules: RuleQueries,
+) -> Option<Entity> {
+    let context = context.single().ok()?;
+    let passes = rules.predicate(*source)?;
+    let filter = QueryFilter::default().predicate(&passes);
+    context
+        .cast_ray(
+            vect(0.0, 1.0, 0.0),
+            vect(1.0, 0.0, 0.0),
+            100.0,
+            true,
+            filter,
+        )
+        .map(|(hit, _)| hit)
+}
+
+#[test]
+fn a_ray_with_the_rules_passes_the_door_and_hits_the_wall() {
+    for (rule, expected) in [
+        (Some(NoPair), "wall"),
+        (Some(NoContacts), "wall"),
+        (Some(NoResponse), "wall"),
+        (Some(Normal), "door"),
+        (None, "door"),
+    ] {
+        let mut c = corridor(rule, false);
+        c.sim.run(2);
+        let hit = c
+            .sim
+            .app
+            .world_mut()
+            .run_system_cached_with(first_hit, c.character)
+            .unwrap();
+        let name = |e: Option<Entity>| match e {
+            Some(e) if e == c.door => "door",
+            Some(e) if e == c.wall => "wall",
+            _ => "nothing",
+        };
+        assert_eq!(name(hit), expected, "{rule:?} with the door");
+    }
+}
+
+/// The rule and the explanation of a pair of entities.
+fn pair_of(
+    pair: In<(Entity, Entity)>,
+    rules: RuleQueries,
+) -> (Option<CollisionRule>, Option<EntityExplanation>) {
+    let (a, b) = *pair;
+    (rules.pair_rule(a, b), rules.explain(a, b))
+}
+
+#[test]
+fn pair_questions_take_and_give_entities() {
+    let mut sim = Sim::new();
+    let f = sim.spawn(floor());
+    let resting = sim.spawn(ball(-1.0, 0.3));
+    let ghost = sim.spawn((ball(1.0, 0.3), SpecificRules::new().with(f, NoResponse)));
+    sim.run(10);
+    let mut ask = |a, b| {
+        sim.app
+            .world_mut()
+            .run_system_cached_with(pair_of, (a, b))
+            .unwrap()
+    };
+    let (rule, why) = ask(resting, f);
+    assert_eq!(rule, Some(Normal), "a ball resting on the floor");
+    assert_eq!(why.map(|w| w.explanation.stage), Some(Stage::Default));
+    assert_eq!(why.and_then(|w| w.entities), None);
+    for (a, b) in [(ghost, f), (f, ghost)] {
+        let (rule, why) = ask(a, b);
+        assert_eq!(
+            rule,
+            Some(NoResponse),
+            "the ghost's live pair with the floor"
+        );
+        let why = why.unwrap();
+        assert_eq!(why.explanation.stage, Stage::Specific);
+        assert_eq!(
+            why.entities,
+            Some((a, b)),
+            "the entry is between the two entities"
+        );
+    }
+    // Two balls far apart form no pair, and an entity without physics is
+    // no answer.
+    let (rule, _) = ask(resting, ghost);
+    assert_eq!(rule, None);
+    let nothing = sim.spawn(Transform::default());
+    let mut ask = |a, b| {
+        sim.app
+            .world_mut()
+            .run_system_cached_with(pair_of, (a, b))
+            .unwrap()
+    };
+    assert_eq!(ask(nothing, f), (None, None));
+}

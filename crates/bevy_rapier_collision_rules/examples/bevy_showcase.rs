@@ -3,14 +3,26 @@
 //! and debris falling through the player. It prints what each actor did,
 //! checks it, and exits (non-zero if a rule did not hold).
 //!
-//! `cargo run --ignore-rust-version -p bevy_rapier_collision_rules --example showcase`
+//! `cargo run --ignore-rust-version -p bevy_rapier_collision_rules --example bevy_showcase`
+//! (3D), `-p bevy_rapier_collision_rules2d --example bevy_showcase2d` for the
+//! same app over bevy_rapier2d: one source, whose few differences are the shape helpers
+//! below.
+
+// One example source for both crates: each names its dimension's
+// bevy_rapier and crate under one name.
+#[cfg(feature = "dim2")]
+extern crate bevy_rapier2d as bevy_rapier;
+#[cfg(feature = "dim3")]
+extern crate bevy_rapier3d as bevy_rapier;
+#[cfg(feature = "dim2")]
+extern crate bevy_rapier_collision_rules2d as bevy_rapier_collision_rules;
 
 use std::time::Duration;
 
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
+use bevy_rapier::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier3d::prelude::*;
 
 /// Collision events seen between two entities, either order.
 #[derive(Resource, Default)]
@@ -33,6 +45,58 @@ struct Actors {
     debris: Vec<Entity>,
 }
 
+/// A box with these half extents (the third is dropped in 2D).
+fn cuboid(hx: f32, hy: f32, hz: f32) -> Collider {
+    #[cfg(feature = "dim3")]
+    return Collider::cuboid(hx, hy, hz);
+    #[cfg(feature = "dim2")]
+    {
+        let _ = hz;
+        Collider::cuboid(hx, hy)
+    }
+}
+
+/// A vector of the dimension (`z` is dropped in 2D).
+fn vect(x: f32, y: f32, z: f32) -> Vect {
+    #[cfg(feature = "dim3")]
+    return Vect::new(x, y, z);
+    #[cfg(feature = "dim2")]
+    {
+        let _ = z;
+        Vect::new(x, y)
+    }
+}
+
+/// A limb's joint to the pelvis: a ball joint in 3D, a hinge in 2D.
+fn limb_joint(on_pelvis: Vect, on_limb: Vect) -> impl Into<TypedJoint> {
+    #[cfg(feature = "dim3")]
+    let joint = SphericalJointBuilder::new();
+    #[cfg(feature = "dim2")]
+    let joint = RevoluteJointBuilder::new();
+    joint.local_anchor1(on_pelvis).local_anchor2(on_limb)
+}
+
+/// Where the debris starts: side by side within the player's width, so
+/// that none lands on another (two rows of three in 3D, one row of four
+/// in the 2D plane).
+fn debris_starts() -> Vec<Vec3> {
+    #[cfg(feature = "dim3")]
+    let starts = (0..6)
+        .map(|i| {
+            Vec3::new(
+                5.85 + 0.3 * (i % 2) as f32,
+                3.0 + 0.5 * i as f32,
+                -0.25 + 0.25 * (i / 2) as f32,
+            )
+        })
+        .collect();
+    #[cfg(feature = "dim2")]
+    let starts = (0..4)
+        .map(|i| Vec3::new(5.67 + 0.22 * i as f32, 3.0 + 0.5 * i as f32, 0.0))
+        .collect();
+    starts
+}
+
 fn build(world: &mut World) -> Actors {
     let (ragdoll, player_group, debris_group) = {
         let mut table = world.resource_mut::<RuleTable>();
@@ -47,10 +111,7 @@ fn build(world: &mut World) -> Actors {
         table.set_group_rule(groups.1, groups.2, CollisionRule::NoPair);
         groups
     };
-    world.spawn((
-        Transform::from_xyz(0.0, -0.5, 0.0),
-        Collider::cuboid(20.0, 0.5, 20.0),
-    ));
+    world.spawn((Transform::from_xyz(0.0, -0.5, 0.0), cuboid(20.0, 0.5, 20.0)));
 
     // The ragdoll: a pelvis and four limbs, each jointed to it and
     // overlapping it. The limbs are not Bevy children of the pelvis:
@@ -60,7 +121,7 @@ fn build(world: &mut World) -> Actors {
         .spawn((
             Transform::from_xyz(-6.0, 2.0, 0.0),
             RigidBody::Dynamic,
-            Collider::cuboid(0.3, 0.2, 0.2),
+            cuboid(0.3, 0.2, 0.2),
             Velocity::zero(),
             RuleGroup(ragdoll),
         ))
@@ -68,9 +129,7 @@ fn build(world: &mut World) -> Actors {
     let limbs = [(-0.3, -0.4), (0.3, -0.4), (-0.4, 0.2), (0.4, 0.2)]
         .into_iter()
         .map(|(x, y)| {
-            let joint = SphericalJointBuilder::new()
-                .local_anchor1(Vec3::new(x, y * 0.5, 0.0))
-                .local_anchor2(Vec3::new(0.0, -y * 0.5, 0.0));
+            let joint = limb_joint(vect(x, y * 0.5, 0.0), vect(0.0, -y * 0.5, 0.0));
             world
                 .spawn((
                     Transform::from_xyz(-6.0 + x, 2.0 + y, 0.0),
@@ -88,7 +147,7 @@ fn build(world: &mut World) -> Actors {
     let wall = world
         .spawn((
             Transform::from_xyz(0.0, 1.0, 0.0),
-            Collider::cuboid(0.1, 1.0, 2.0),
+            cuboid(0.1, 1.0, 2.0),
             ActiveEvents::COLLISION_EVENTS,
         ))
         .id();
@@ -97,7 +156,7 @@ fn build(world: &mut World) -> Actors {
             Transform::from_xyz(-2.0, 0.5, 0.0),
             RigidBody::Dynamic,
             Collider::ball(0.5),
-            Velocity::linear(Vec3::X * 2.0),
+            Velocity::linear(vect(2.0, 0.0, 0.0)),
             Friction::new(0.0),
             SpecificRules::new().with(wall, CollisionRule::NoResponse),
         ))
@@ -113,18 +172,14 @@ fn build(world: &mut World) -> Actors {
             RuleGroup(player_group),
         ))
         .id();
-    let debris = (0..6)
-        .map(|i| {
+    let debris = debris_starts()
+        .into_iter()
+        .map(|start| {
             world
                 .spawn((
-                    // Side by side within the player's width: none lands on another.
-                    Transform::from_xyz(
-                        5.85 + 0.3 * (i % 2) as f32,
-                        3.0 + 0.5 * i as f32,
-                        -0.25 + 0.25 * (i / 2) as f32,
-                    ),
+                    Transform::from_translation(start),
                     RigidBody::Dynamic,
-                    Collider::cuboid(0.1, 0.1, 0.1),
+                    cuboid(0.1, 0.1, 0.1),
                     RuleGroup(debris_group),
                 ))
                 .id()

@@ -126,10 +126,24 @@ impl RuleQueries<'_, '_> {
             .rules()
             .query_predicate(&bodies.bodies, &colliders.colliders, handle);
         Some(move |entity: Entity, collider: &RapierCollider| {
-            colliders
+            // A collider without an entity of its own (a soft body's
+            // meshes carry the soft body's entity) is found among its
+            // body's colliders by address; one found nowhere is kept, as
+            // without the rules.
+            let other = colliders
                 .entity2collider()
                 .get(&entity)
-                .is_some_and(|&other| passes(other, collider))
+                .copied()
+                .or_else(|| {
+                    let body = bodies.bodies.get(collider.parent()?)?;
+                    body.colliders().iter().copied().find(|&h| {
+                        colliders
+                            .colliders
+                            .get(h)
+                            .is_some_and(|c| std::ptr::eq(c, collider))
+                    })
+                });
+            other.is_none_or(|other| passes(other, collider))
         })
     }
 

@@ -246,3 +246,40 @@ fn pair_questions_take_and_give_entities() {
     };
     assert_eq!(ask(nothing, f), (None, None));
 }
+
+/// A soft body's meshes carry the soft body's entity, not one of their
+/// own: the ray still asks their rule.
+#[cfg(feature = "dim3")]
+#[test]
+fn a_ray_with_the_rules_passes_a_soft_body_its_rule_opens() {
+    for (rule, expected) in [
+        (Some(NoPair), "wall"),
+        (Some(NoResponse), "wall"),
+        (None, "jelly"),
+    ] {
+        let mut c = corridor(None, false);
+        let jelly = c.sim.spawn((
+            Transform::from_xyz(DOOR_X + 1.0, 1.0, 0.0),
+            SoftBody::cuboid(Vec3::splat(0.5), 3, 3, 3),
+        ));
+        c.sim.entity_mut(c.door).despawn();
+        if let Some(rule) = rule {
+            c.sim
+                .entity_mut(c.character)
+                .insert(SpecificRules::new().with(jelly, rule));
+        }
+        c.sim.run(2);
+        let hit = c
+            .sim
+            .app
+            .world_mut()
+            .run_system_cached_with(first_hit, c.character)
+            .unwrap();
+        let name = match hit {
+            Some(e) if e == jelly => "jelly",
+            Some(e) if e == c.wall => "wall",
+            _ => "nothing",
+        };
+        assert_eq!(name, expected, "{rule:?} with the jelly");
+    }
+}

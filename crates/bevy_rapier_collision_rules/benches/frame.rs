@@ -40,9 +40,10 @@ enum Rules {
     None,
     /// 5% of the bodies in a group with NoPair to an empty group.
     Groups,
-    /// Four character controllers walking over the level, each following
-    /// its rules (`ControllerFollowsRules`, a `NoPair` with one tile),
-    /// against plain bevy_rapier's same controllers.
+    /// Four character controllers walking over the level, each through a
+    /// door 1 m ahead that its rules open (`ControllerFollowsRules`, a
+    /// `NoPair` with the door), against plain bevy_rapier's same
+    /// controllers with the door in `exclude_colliders`: the same moves.
     Controllers,
 }
 
@@ -129,16 +130,12 @@ fn app(scene: Scene, rules: Rules, controllers: bool) -> App {
         Scene::Level => (20, 64 * 64),
     };
     world.spawn((Transform::from_xyz(0.0, -0.5, 0.0), cuboid(40.0, 0.5, 40.0)));
-    let first_tile = (0..tiles)
-        .map(|i| {
-            world
-                .spawn((
-                    Transform::from_translation(tile_at(i)),
-                    cuboid(0.45, 0.25, 0.45),
-                ))
-                .id()
-        })
-        .min();
+    for i in 0..tiles {
+        world.spawn((
+            Transform::from_translation(tile_at(i)),
+            cuboid(0.45, 0.25, 0.45),
+        ));
+    }
     for i in 0..bodies {
         let mut body = world.spawn((
             Transform::from_translation(pile_at(i)),
@@ -151,16 +148,27 @@ fn app(scene: Scene, rules: Rules, controllers: bool) -> App {
     }
     if controllers {
         for i in 0..4 {
+            let start = character_at(i);
+            let door = world
+                .spawn((
+                    Transform::from_translation(start + Vec3::X),
+                    cuboid(0.1, 1.0, 1.0),
+                ))
+                .id();
+            let mut controller = KinematicCharacterController::default();
+            if rules != Rules::Controllers {
+                controller.exclude_colliders.insert(door);
+            }
             let mut character = world.spawn((
-                Transform::from_translation(character_at(i)),
+                Transform::from_translation(start),
                 RigidBody::KinematicPositionBased,
                 Collider::ball(0.3),
-                KinematicCharacterController::default(),
+                controller,
             ));
-            if let Some(first_tile) = first_tile.filter(|_| rules == Rules::Controllers) {
+            if rules == Rules::Controllers {
                 character.insert((
                     ControllerFollowsRules::default(),
-                    SpecificRules::new().with(first_tile, CollisionRule::NoPair),
+                    SpecificRules::new().with(door, CollisionRule::NoPair),
                 ));
             }
         }

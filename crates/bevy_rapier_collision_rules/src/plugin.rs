@@ -28,6 +28,13 @@ pub enum RulesSystems {
     /// After `PhysicsSet::StepSimulation`, before `PhysicsSet::Writeback`:
     /// the rules take in the pairs of the step.
     Finish,
+    /// In bevy_rapier's `PhysicsSet::SyncBackend`, right before its
+    /// character controllers move: what each controller with
+    /// [`ControllerFollowsRules`](super::ControllerFollowsRules) may touch
+    /// this frame is decided. A project that places bevy_rapier's systems
+    /// itself (`with_default_system_setup(false)`) orders this set before
+    /// bevy_rapier's `update_character_controls`.
+    Controllers,
 }
 
 /// Adds the collision rules to a bevy_rapier app. Add it beside
@@ -146,11 +153,15 @@ impl Plugin for CollisionRulesPlugin {
         // Character controllers that follow the rules decide what they may
         // touch right before bevy_rapier moves them (`docs/bevy.md`,
         // "Queries and character controllers").
-        app.add_systems(
+        app.configure_sets(
             self.schedule,
-            filter_controllers
+            RulesSystems::Controllers
                 .in_set(PhysicsSet::SyncBackend)
                 .before(bevy_rapier::plugin::systems::update_character_controls),
+        )
+        .add_systems(
+            self.schedule,
+            filter_controllers.in_set(RulesSystems::Controllers),
         )
         .add_observer(restore_controller);
     }

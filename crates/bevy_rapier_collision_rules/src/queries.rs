@@ -7,8 +7,8 @@
 //! `KinematicCharacterController` the same predicate: bevy_rapier's
 //! controller takes only a `'static` closure that cannot read the ECS, so
 //! [`filter_controllers`] decides, right before bevy_rapier moves the
-//! controllers, every collider each controller can reach this frame, and
-//! the installed closure reads those decisions.
+//! controllers, every collider within a bound of each controller's move
+//! this frame, and the installed closure reads those decisions.
 
 use std::sync::{Arc, PoisonError, RwLock};
 
@@ -24,7 +24,7 @@ use bevy_rapier::rapier::control::CharacterLength;
 use bevy_rapier::rapier::math::{Real, Vector};
 use bevy_rapier::rapier::parry::bounding_volume::Aabb;
 use bevy_rapier::rapier::prelude::{
-    Collider as RapierCollider, ColliderHandle, QueryFilter as RapierQueryFilter,
+    Collider as RapierCollider, ColliderHandle, QueryFilter as RapierQueryFilter, QueryPipeline,
 };
 
 use crate::collision_rules::{CollisionRule, Explanation, Node, WorldRef};
@@ -235,12 +235,15 @@ fn collider_of(
 /// a `Normal` wall, as [`RuleQueries::predicate`] keeps and leaves out
 /// colliders. The controller's own `filter_predicate` is kept and asked
 /// too (a collider must pass both); set it before or after adding this
-/// component, and removing the component gives it back alone.
+/// component, and removing or replacing the component gives it back alone.
 ///
 /// The decisions are made each frame, right before bevy_rapier moves the
-/// controllers, for every collider whose bounding box the controller can
-/// reach this frame (its shape's box grown by its translation, offset,
-/// snap and autostep), with the rules as the last step left them.
+/// controllers ([`RulesSystems::Controllers`](super::RulesSystems)), for
+/// every collider within a bound of the move (the character's box grown
+/// by its translation, offset, snap, autostep, push out of an overlap and
+/// the platform it may stand on; `docs/bevy.md`, "Queries and character
+/// controllers"), with the rules as the last step left them. A collider
+/// beyond the bound is kept, as without the rules.
 ///
 /// ```
 /// use bevy::prelude::*;
@@ -325,9 +328,6 @@ pub(crate) fn filter_controllers(
     mut controllers: Query<Controllers>,
 ) {
     for (entity, link, mut controller, mut follows, collider, body, global) in &mut controllers {
-        let Ok((rules, simulation, colliders, bodies)) = contexts.get(link.0) else {
-            continue;
-        };
         let installed = match follows.installed.take() {
             Some(installed) if installed.is_ours(controller.filter_predicate.as_ref()) => installed,
             // A predicate the project set (or none, at the first frame):
@@ -339,32 +339,42 @@ pub(crate) fn filter_controllers(
             }
         };
         {
+            // Last frame's decisions go first: nothing below may leave
+            // them standing (a controller out of its context, or idle).
             let mut left_out = installed
                 .left_out
                 .write()
                 .unwrap_or_else(PoisonError::into_inner);
             left_out.clear();
-            let source = collider
-                .map(|c| c.0)
-                .or_else(|| collider_of(colliders, bodies, entity));
-            let reach = source.and_then(|source| {
-                let shape = character_box(&controller, colliders, bodies, source, body, global)?;
-                Some((source, reach(&controller, shape)))
-            });
-            if let Some((source, aabb)) = reach {
-                let passes =
-                    rules
-                        .rules()
-                        .query_predicate(&bodies.bodies, &colliders.colliders, source);
-                let pipeline = simulation.broad_phase.as_query_pipeline(
-                    simulation.narrow_phase.query_dispatcher(),
-                    &bodies.bodies,
-                    &colliders.colliders,
-                    RapierQueryFilter::default(),
-                );
-                for (handle, other) in pipeline.intersect_aabb_conservative(aabb) {
-                    if handle != source && !passes(handle, other) {
-                        left_out.insert(RapierContextColliders::entity_from_collider(other));
+            // bevy_rapier moves a controller only with a translation.
+            let context = contexts
+                .get(link.0)
+                .ok()
+                .filter(|_| controller.translation.is_some());
+            if let Some((rules, simulation, colliders, bodies)) = context {
+                let source = collider
+                    .map(|c| c.0)
+                    .or_else(|| collider_of(colliders, bodies, entity));
+                let shape = source.and_then(|source| {
+                    character_box(&controller, colliders, bodies, source, body, global)
+                });
+                if let (Some(source), Some(shape)) = (source, shape) {
+                    let pipeline = simulation.broad_phase.as_query_pipeline(
+                        simulation.narrow_phase.query_dispatcher(),
+                        &bodies.bodies,
+                        &colliders.colliders,
+                        RapierQueryFilter::default(),
+                    );
+                    let dt = simulation.integration_parameters.dt;
+                    let aabb = reach(&controller, shape, &pipeline, dt);
+                    let passes =
+                        rules
+                            .rules()
+                            .query_predicate(&bodies.bodies, &colliders.colliders, source);
+                    for (handle, other) in pipeline.intersect_aabb_conservative(aabb) {
+                        if handle != source && !passes(handle, other) {
+                            left_out.insert(RapierContextColliders::entity_from_collider(other));
+                        }
                     }
                 }
             }
@@ -406,32 +416,82 @@ fn vector_of(translation: Vec3) -> Vector {
 }
 
 /// The box of everything the controller's move can touch this frame: its
-/// shape's box grown by the longest way the move can take (translation,
-/// offset, snap to ground and autostep, each relative length read against
-/// the shape's diameter, which bounds every extent Rapier reads it
-/// against), with a margin.
-fn reach(controller: &KinematicCharacterController, shape: Aabb) -> Aabb {
-    let diameter = (shape.maxs - shape.mins).max_element();
+/// shape's box grown by a bound on the way the move can take. Rapier's
+/// controller (`control/character_controller.rs`) moves by the
+/// translation, keeps `offset` away, snaps down by `snap_to_ground`,
+/// climbs a step of `max_height` over `min_width`, pushes the character
+/// out of an overlap by at most a quarter of its height, and carries it
+/// with a kinematic body it stands on by that body's velocity over `dt`.
+/// Each relative length is read against the box's diagonal, which bounds
+/// every extent Rapier reads it against (its height along `up`, its width
+/// across), and the climb is counted four times for stairs taken in one
+/// move; then a margin of half as much again. A collider beyond the box is
+/// kept, as without the rules: a miss can block the character with what its
+/// rules open, never let it through what they keep.
+fn reach(
+    controller: &KinematicCharacterController,
+    shape: Aabb,
+    pipeline: &QueryPipeline<'_>,
+    dt: Real,
+) -> Aabb {
+    let diagonal = (shape.maxs - shape.mins).length();
     let length = |l: CharacterLength| match l {
-        CharacterLength::Relative(x) => x * diameter,
+        CharacterLength::Relative(x) => x * diagonal,
         CharacterLength::Absolute(x) => x,
     };
     let translation = controller.translation.map_or(0.0, |t| t.length());
     let offset = length(controller.offset);
     let snap = controller.snap_to_ground.map_or(0.0, length);
-    let step = controller
+    let climb = controller
         .autostep
-        .map_or(0.0, |a| length(a.max_height) + length(a.min_width));
-    let way: Real = translation + offset + snap + step + controller.normal_nudge_factor;
-    let margin = 0.1 + 0.25 * way;
-    let grow = Vector::splat(way + margin);
-    Aabb::new(shape.mins - grow, shape.maxs + grow)
+        .map_or(0.0, |a| 4.0 * (length(a.max_height) + length(a.min_width)));
+    let push_out = 0.25 * diagonal;
+    let near = translation + offset + snap + climb + push_out + controller.normal_nudge_factor;
+    let carried = dt * platform_speed(pipeline, grow(shape, near + 0.1), diagonal);
+    let way = near + carried;
+    grow(shape, 1.5 * way + 0.1)
+}
+
+/// `aabb` grown by `by` on every side.
+fn grow(aabb: Aabb, by: Real) -> Aabb {
+    let by = Vector::splat(by);
+    Aabb::new(aabb.mins - by, aabb.maxs + by)
+}
+
+/// The fastest a kinematic body with a collider in `near` moves any point
+/// within `near` (its speed plus its spin times the farthest such point).
+fn platform_speed(pipeline: &QueryPipeline<'_>, near: Aabb, diagonal: Real) -> Real {
+    let center = (near.mins + near.maxs) * 0.5;
+    let mut fastest: Real = 0.0;
+    for (_, collider) in pipeline.intersect_aabb_conservative(near) {
+        let Some(body) = collider.parent().and_then(|b| pipeline.bodies.get(b)) else {
+            continue;
+        };
+        if !body.is_kinematic() {
+            continue;
+        }
+        let arm = (center - body.center_of_mass()).length() + diagonal;
+        fastest = fastest.max(body.linvel().length() + spin(body.angvel()) * arm);
+    }
+    fastest
+}
+
+/// How fast a body spins, whatever the dimension's angular velocity is.
+#[cfg(feature = "dim3")]
+fn spin(angvel: Vector) -> Real {
+    angvel.length()
+}
+
+/// How fast a body spins, whatever the dimension's angular velocity is.
+#[cfg(feature = "dim2")]
+fn spin(angvel: Real) -> Real {
+    angvel.abs()
 }
 
 /// Gives the controller its project's predicate back when the component
-/// goes.
+/// goes, or is replaced by a new one (which installs itself anew).
 pub(crate) fn restore_controller(
-    event: On<Remove<ControllerFollowsRules>>,
+    event: On<Discard<ControllerFollowsRules>>,
     mut controllers: Query<(
         &mut KinematicCharacterController,
         &mut ControllerFollowsRules,

@@ -20,6 +20,5 @@ mod outcomes;
 mod project;
 mod queries;
 mod scene;
-#[cfg(feature = "dim3")]
 mod soft;
 mod stepping;

@@ -4,6 +4,8 @@
 //! questions answer with entities.
 
 use CollisionRule::*;
+use std::sync::Arc;
+
 use bevy::prelude::*;
 use bevy_rapier::control::{ControllerFilterPredicate, KinematicCharacterController};
 use bevy_rapier::prelude::*;
@@ -76,15 +78,39 @@ fn stopped_before(at: f32, x: f32) -> bool {
 
 const FRAMES: usize = 90;
 
+/// The height of a second character, which walks into a `Normal` wall
+/// right above the door, within the reach of the same rules.
+const ABOVE_Y: f32 = 3.0;
+
 #[test]
 fn a_controller_walks_through_the_door_its_rule_opens_and_is_stopped_by_the_wall() {
     for rule in [NoPair, NoContacts, NoResponse] {
         let mut c = corridor(Some(rule), true);
+        // A wall on the door (y 2 to 4), and a second character with the
+        // same rule walking into it: the door is within its reach, the
+        // wall stops it.
+        c.sim.spawn((
+            Transform::from_xyz(DOOR_X, ABOVE_Y, 0.0),
+            cuboid(0.1, 1.0, 1.0),
+        ));
+        let second = c.sim.spawn((
+            Transform::from_xyz(0.0, ABOVE_Y, 0.0),
+            RigidBody::KinematicPositionBased,
+            Collider::ball(RADIUS),
+            KinematicCharacterController::default(),
+            ControllerFollowsRules::default(),
+            SpecificRules::new().with(c.door, rule),
+        ));
         c.sim.run(FRAMES);
         let x = c.sim.at(c.character).x;
         assert!(
             stopped_before(x, WALL_X),
             "{rule:?} with the door: the character passes it and stops at the wall, x = {x}"
+        );
+        let x = c.sim.at(second).x;
+        assert!(
+            stopped_before(x, DOOR_X),
+            "{rule:?} with the door: the wall on it stops the second character, x = {x}"
         );
     }
     // A Normal rule, no rule, and the rules not followed: the door stops it.
@@ -99,26 +125,70 @@ fn a_controller_walks_through_the_door_its_rule_opens_and_is_stopped_by_the_wall
     }
 }
 
+/// The predicate on the character's controller.
+fn predicate_of(sim: &Sim, character: Entity) -> ControllerFilterPredicate {
+    let controller = sim
+        .app
+        .world()
+        .get::<KinematicCharacterController>(character);
+    controller
+        .unwrap()
+        .filter_predicate
+        .clone()
+        .expect("a predicate")
+}
+
 #[test]
 fn a_controllers_own_predicate_is_asked_too_and_comes_back_alone() {
     let mut c = corridor(Some(NoPair), true);
+    c.sim.run(5);
+    // The project sets a predicate of its own after the rules installed
+    // theirs: both are asked.
     let wall = c.wall;
+    let own = ControllerFilterPredicate::new(move |e, _| e != wall);
     c.sim
         .entity_mut(c.character)
         .get_mut::<KinematicCharacterController>()
         .unwrap()
-        .filter_predicate = Some(ControllerFilterPredicate::new(move |e, _| e != wall));
+        .filter_predicate = Some(own.clone());
     c.sim.run(FRAMES);
     let x = c.sim.at(c.character).x;
     assert!(
         x > WALL_X + 1.0,
         "the rules open the door, the project's predicate the wall: x = {x}"
     );
-    // Without the component the project's predicate is alone again: back
-    // at the start, the door stops the character.
+    // Back in front of the door, within reach: the rules leave it out
+    // (the move reaches Rapier in the first frame, the decisions are made
+    // there in the second).
     c.sim
         .entity_mut(c.character)
-        .remove::<ControllerFollowsRules>()
+        .insert(Transform::from_xyz(DOOR_X - 0.8, 1.0, 0.0));
+    c.sim.run(2);
+    let ball = rapier_ball();
+    let both = predicate_of(&c.sim, c.character);
+    assert!(!Arc::ptr_eq(&both.0, &own.0), "the rules' predicate is on");
+    assert!(!both.test(c.door, &ball) && !both.test(c.wall, &ball));
+    // A new component in place of the old one gives the project's
+    // predicate back and installs itself anew, asking it.
+    c.sim
+        .entity_mut(c.character)
+        .insert(ControllerFollowsRules::default());
+    c.sim.run(1);
+    let again = predicate_of(&c.sim, c.character);
+    assert!(!Arc::ptr_eq(&again.0, &both.0), "installed anew");
+    assert!(!again.test(c.door, &ball) && !again.test(c.wall, &ball));
+    // Without the component, the project's predicate alone, while the
+    // door is still within reach.
+    c.sim
+        .entity_mut(c.character)
+        .remove::<ControllerFollowsRules>();
+    let alone = predicate_of(&c.sim, c.character);
+    assert!(
+        Arc::ptr_eq(&alone.0, &own.0),
+        "the project's own predicate is back"
+    );
+    c.sim
+        .entity_mut(c.character)
         .insert(Transform::from_xyz(0.0, 1.0, 0.0));
     c.sim.run(FRAMES);
     let x = c.sim.at(c.character).x;
@@ -126,17 +196,6 @@ fn a_controllers_own_predicate_is_asked_too_and_comes_back_alone() {
         stopped_before(x, DOOR_X),
         "the door stops it again: x = {x}"
     );
-    let controller = c
-        .sim
-        .app
-        .world()
-        .get::<KinematicCharacterController>(c.character);
-    let predicate = controller.unwrap().filter_predicate.clone().unwrap();
-    assert!(
-        !predicate.test(c.wall, &rapier_ball()),
-        "the project's own predicate is the one on the controller"
-    );
-    assert!(predicate.test(c.door, &rapier_ball()));
 }
 
 /// A Rapier collider to hand a predicate (it reads only the entity).

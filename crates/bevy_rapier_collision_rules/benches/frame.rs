@@ -23,7 +23,12 @@ use std::time::{Duration, Instant};
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_rapier::prelude::*;
+
+#[path = "../tests/dimension/mod.rs"]
+#[allow(dead_code)]
+mod dimension;
 use bevy_rapier_collision_rules::prelude::*;
+use dimension::cuboid;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Scene {
@@ -51,17 +56,6 @@ enum Rules {
 fn walk(mut controllers: Query<&mut KinematicCharacterController>) {
     for mut controller in &mut controllers {
         controller.translation = Some(Vect::X * 0.02);
-    }
-}
-
-/// A box with these half extents (the third is dropped in 2D).
-fn cuboid(hx: f32, hy: f32, hz: f32) -> Collider {
-    #[cfg(feature = "dim3")]
-    return Collider::cuboid(hx, hy, hz);
-    #[cfg(feature = "dim2")]
-    {
-        let _ = hz;
-        Collider::cuboid(hx, hy)
     }
 }
 

@@ -22,7 +22,11 @@ use std::time::Duration;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_rapier::prelude::*;
+
+#[path = "../tests/dimension/mod.rs"]
+mod dimension;
 use bevy_rapier_collision_rules::prelude::*;
+use dimension::{cuboid, vect};
 
 /// Collision events seen between two entities, either order.
 #[derive(Resource, Default)]
@@ -43,28 +47,6 @@ struct Actors {
     wall: Entity,
     player: Entity,
     debris: Vec<Entity>,
-}
-
-/// A box with these half extents (the third is dropped in 2D).
-fn cuboid(hx: f32, hy: f32, hz: f32) -> Collider {
-    #[cfg(feature = "dim3")]
-    return Collider::cuboid(hx, hy, hz);
-    #[cfg(feature = "dim2")]
-    {
-        let _ = hz;
-        Collider::cuboid(hx, hy)
-    }
-}
-
-/// A vector of the dimension (`z` is dropped in 2D).
-fn vect(x: f32, y: f32, z: f32) -> Vect {
-    #[cfg(feature = "dim3")]
-    return Vect::new(x, y, z);
-    #[cfg(feature = "dim2")]
-    {
-        let _ = z;
-        Vect::new(x, y)
-    }
 }
 
 /// A limb's joint to the pelvis: a ball joint in 3D, a hinge in 2D.

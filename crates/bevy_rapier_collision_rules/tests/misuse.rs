@@ -26,13 +26,9 @@ use bevy::time::TimeUpdateStrategy;
 use bevy_rapier::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
 
-/// The floor's box, in either dimension.
-fn floor_box() -> Collider {
-    #[cfg(feature = "dim3")]
-    return Collider::cuboid(5.0, 0.5, 5.0);
-    #[cfg(feature = "dim2")]
-    Collider::cuboid(5.0, 0.5)
-}
+#[path = "dimension/mod.rs"]
+#[allow(dead_code)]
+mod dimension;
 
 /// Every warning this crate logged since the current test began.
 static WARNINGS: Mutex<Vec<String>> = Mutex::new(Vec::new());
@@ -93,7 +89,10 @@ fn run<M>(physics: impl Plugins<M>) -> f32 {
     app.cleanup();
     let floor = app
         .world_mut()
-        .spawn((Transform::from_xyz(0.0, -0.5, 0.0), floor_box()))
+        .spawn((
+            Transform::from_xyz(0.0, -0.5, 0.0),
+            dimension::cuboid(5.0, 0.5, 5.0),
+        ))
         .id();
     let ball = app
         .world_mut()

@@ -12,6 +12,9 @@ extern crate bevy_rapier3d as bevy_rapier;
 #[cfg(feature = "dim2")]
 extern crate bevy_rapier_collision_rules2d as bevy_rapier_collision_rules;
 
+#[path = "../dimension/mod.rs"]
+mod dimension;
+
 mod contexts;
 mod edits;
 mod elevator;

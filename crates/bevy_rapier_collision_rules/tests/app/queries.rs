@@ -225,6 +225,22 @@ fn first_hit(
         .map(|(hit, _)| hit)
 }
 
+impl Corridor {
+    /// What the character's ray hits first: "wall", `name` for `other`, or
+    /// "nothing".
+    fn ray_hits(&mut self, other: Entity, name: &'static str) -> &'static str {
+        let world = self.sim.app.world_mut();
+        match world
+            .run_system_cached_with(first_hit, self.character)
+            .unwrap()
+        {
+            Some(e) if e == other => name,
+            Some(e) if e == self.wall => "wall",
+            _ => "nothing",
+        }
+    }
+}
+
 #[test]
 fn a_ray_with_the_rules_passes_the_door_and_hits_the_wall() {
     for (rule, expected) in [
@@ -236,18 +252,8 @@ fn a_ray_with_the_rules_passes_the_door_and_hits_the_wall() {
     ] {
         let mut c = corridor(rule, false);
         c.sim.run(2);
-        let hit = c
-            .sim
-            .app
-            .world_mut()
-            .run_system_cached_with(first_hit, c.character)
-            .unwrap();
-        let name = |e: Option<Entity>| match e {
-            Some(e) if e == c.door => "door",
-            Some(e) if e == c.wall => "wall",
-            _ => "nothing",
-        };
-        assert_eq!(name(hit), expected, "{rule:?} with the door");
+        let door = c.door;
+        assert_eq!(c.ray_hits(door, "door"), expected, "{rule:?} with the door");
     }
 }
 
@@ -328,17 +334,10 @@ fn a_ray_with_the_rules_passes_a_soft_body_its_rule_opens() {
                 .insert(SpecificRules::new().with(jelly, rule));
         }
         c.sim.run(2);
-        let hit = c
-            .sim
-            .app
-            .world_mut()
-            .run_system_cached_with(first_hit, c.character)
-            .unwrap();
-        let name = match hit {
-            Some(e) if e == jelly => "jelly",
-            Some(e) if e == c.wall => "wall",
-            _ => "nothing",
-        };
-        assert_eq!(name, expected, "{rule:?} with the jelly");
+        assert_eq!(
+            c.ray_hits(jelly, "jelly"),
+            expected,
+            "{rule:?} with the jelly"
+        );
     }
 }

@@ -13,6 +13,8 @@ use bevy_rapier::plugin::context::{
 use bevy_rapier::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
 
+pub use crate::dimension::{cuboid, vect};
+
 pub const DT: f32 = 1.0 / 60.0;
 
 pub struct Sim {
@@ -195,28 +197,6 @@ impl Sim {
 /// Rapier's collider type, through bevy_rapier.
 pub mod rapier_collider {
     pub use bevy_rapier::rapier::prelude::Collider;
-}
-
-/// A box with these half extents (the third is dropped in 2D).
-pub fn cuboid(hx: f32, hy: f32, hz: f32) -> Collider {
-    #[cfg(feature = "dim3")]
-    return Collider::cuboid(hx, hy, hz);
-    #[cfg(feature = "dim2")]
-    {
-        let _ = hz;
-        Collider::cuboid(hx, hy)
-    }
-}
-
-/// A vector of the dimension (`z` is dropped in 2D).
-pub fn vect(x: f32, y: f32, z: f32) -> Vect {
-    #[cfg(feature = "dim3")]
-    return Vect::new(x, y, z);
-    #[cfg(feature = "dim2")]
-    {
-        let _ = z;
-        Vect::new(x, y)
-    }
 }
 
 /// A fixed floor whose top is at y = 0.

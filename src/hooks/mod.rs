@@ -198,10 +198,10 @@ struct Queued {
     /// Colliders to plan again before the next step (a partial plan).
     candidates: Vec<ColliderHandle>,
     /// Rapier's copies of a cut soft body's colliders, each with the
-    /// collider it copies: what a copy holds now is the crate's write and
-    /// the project's settings of the original, as Rapier copied them (see
-    /// `RuleHooks::settle_pieces`).
-    pieces: Vec<(ColliderHandle, ColliderHandle)>,
+    /// colliders it may copy: what a copy holds now is the crate's write
+    /// and the project's settings of the original, as Rapier copied them
+    /// (see `RuleHooks::settle_pieces`).
+    pieces: Vec<soft_bodies::Copied>,
     /// Something the whole plan depends on changed: plan again before the
     /// next step, for this reason.
     replan: Option<PlanCause>,

@@ -19,8 +19,9 @@ use hashbrown::HashMap;
 
 use super::super::rapier::prelude::*;
 
-use super::super::Node;
-use super::super::model::CollidersUnder;
+use super::super::{CollisionRuleSet, Node};
+use super::super::model::{CollidersUnder, Heir};
+use super::super::world::Settings;
 use super::{PlanCause, RuleHooks};
 
 /// What the hooks know of the world's soft bodies.
@@ -37,6 +38,18 @@ pub(super) struct SoftBodies {
     /// Pieces get a copy of their source's rules, not its record (see
     /// [`RuleHooks::set_pieces_copy_rules`]).
     copy_to_pieces: bool,
+}
+
+/// Rapier's copy of a cut soft body's collider, waiting for its record
+/// (see [`RuleHooks::settle_pieces`]).
+#[derive(Debug, Clone)]
+pub(super) struct Copied {
+    /// The copy.
+    copy: ColliderHandle,
+    /// The colliders it may copy, the likeliest first.
+    originals: CollidersUnder,
+    /// How many of `originals` are likeliest: mesh by mesh, then the first.
+    likeliest: usize,
 }
 
 /// A soft body as the hooks last saw it.
@@ -57,6 +70,40 @@ impl Seen {
         Seen {
             root: body.root_body(),
             meshes: mesh_colliders(body),
+        }
+    }
+
+    /// A soft body the hooks see for the first time. Cut before they ever
+    /// saw it (pieces of it are new too), it may have given its root to a
+    /// piece and taken a new one (rapier 0.36.1): the root it had, where the
+    /// rules were given, is the one of those the rules name.
+    fn first_sight(handle: SoftBodyHandle, body: &SoftBody, soft_bodies: &SoftBodySet, rules: &CollisionRuleSet) -> Seen {
+        let mut seen = Seen::of(body);
+        let named = |root: RigidBodyHandle| rules.holds_rules_about(Node::Body(root));
+        if !body.pieces().is_empty() && !named(seen.root) {
+            let pieces = body.pieces().iter().filter_map(|&p| soft_bodies.get(p));
+            if let Some(piece) = pieces.filter(|p| p.origin() == Some(handle)).find(|p| named(p.root_body())) {
+                seen.root = piece.root_body();
+            }
+        }
+        seen
+    }
+}
+
+/// A soft body whose root is no longer `old` (a piece, or a body whose root
+/// cluster went): its root now, a proxy the hooks may have linked to `old`,
+/// is not `old`'s child any more, and its other proxies linked to `old` are
+/// linked to it (`docs/semantics.md`, "Soft bodies").
+fn relink_proxies(rules: &mut CollisionRuleSet, body: &SoftBody, old: RigidBodyHandle) {
+    let root = body.root_body();
+    if rules.parent(root) == Some(old) {
+        rules.remove_parent(root);
+    }
+    for (_, cluster) in body.live_clusters() {
+        let proxy = cluster.proxy();
+        if proxy != root && rules.parent(proxy) == Some(old) {
+            // A proxy is a leaf of Rapier's making: no cycle goes through it.
+            let _ = rules.set_parent(proxy, root);
         }
     }
 }
@@ -158,10 +205,16 @@ impl RuleHooks {
         }
         // A cluster added to a soft body adds its proxy to the bodies.
         // A rule given to a soft body's root links its proxies. A cut and a
-        // removal in one step may leave both numbers as they were: a soft
-        // body the hooks have not seen says so (one lookup per soft body).
+        // removal in one step may leave both numbers as they were, and so
+        // may a cut that splits a body's root cluster without splitting the
+        // body: a soft body the hooks have not seen, or one with another
+        // root than they saw, says so (one lookup per soft body).
         let counts = (soft_bodies.len(), if present { bodies.len() } else { 0 });
-        let unseen = || soft_bodies.iter().any(|(h, _)| !self.soft.known.contains_key(&h));
+        let unseen = || {
+            soft_bodies
+                .iter()
+                .any(|(h, body)| self.soft.known.get(&h).is_none_or(|seen| seen.root != body.root_body()))
+        };
         if counts == self.soft.counts && !(present && self.decide.rules.has_changes()) && !unseen() {
             return;
         }
@@ -176,27 +229,39 @@ impl RuleHooks {
         // own source has them: sources first. A source the project removed
         // since the hooks last saw it is found in their record of it (its
         // rules are still held until the hooks see the removal).
+        // What the hooks knew of each source before this look: a source
+        // split twice since (two cuts before a step) gave its root to one
+        // piece, and its record is refreshed after the first piece.
+        let known_before: HashMap<SoftBodyHandle, Seen> = new
+            .iter()
+            .filter_map(|&h| soft_bodies[h].origin())
+            .filter_map(|s| self.soft.known.get(&s).map(|seen| (s, seen.clone())))
+            .collect();
         while !new.is_empty() {
             let before = new.len();
             new.retain(|&handle| {
                 let body = &soft_bodies[handle];
                 let source = body.origin();
-                let held = source.and_then(|s| self.soft.known.get(&s).cloned());
+                let held = source.and_then(|s| known_before.get(&s).or_else(|| self.soft.known.get(&s)).cloned());
                 let Some((source, held)) = source.zip(held) else {
                     // A source new this step waits for its turn; no source,
                     // or one never seen: the piece starts with no rules.
                     if source.is_some_and(|s| soft_bodies.contains(s)) {
                         return true;
                     }
-                    self.soft.known.insert(handle, Seen::of(body));
+                    let seen = Seen::first_sight(handle, body, soft_bodies, &self.decide.rules);
+                    self.soft.known.insert(handle, seen);
                     return false;
                 };
                 let from = soft_bodies.get(source);
                 // The rules are on the root the source had: the roots of both
-                // sides now that are not it take them.
-                for root in from.map(SoftBody::root_body).into_iter().chain([body.root_body()]) {
-                    if root != held.root {
-                        self.decide.rules.give_piece(held.root, root, self.soft.copy_to_pieces);
+                // sides now that are not it take them, and the proxies the
+                // hooks linked to it on a side that no longer has it are
+                // linked to that side's root.
+                for side in from.into_iter().chain([body]) {
+                    if side.root_body() != held.root {
+                        relink_proxies(&mut self.decide.rules, side, held.root);
+                        self.decide.rules.give_piece(held.root, side.root_body(), self.soft.copy_to_pieces, Heir::Piece);
                     }
                 }
                 let sides: [CollidersUnder; 2] = [
@@ -218,6 +283,7 @@ impl RuleHooks {
             }
         }
         self.soft.known.retain(|&h, _| soft_bodies.contains(h));
+        self.follow_moved_roots(soft_bodies);
         let rules = &mut self.decide.rules;
         for (_, body) in soft_bodies.iter() {
             let root = body.root_body();
@@ -237,33 +303,75 @@ impl RuleHooks {
         }
     }
 
+    /// A soft body whose root changed without a cut (the project removed
+    /// its root's cluster: rapier 0.36.1 makes the proxy of another cluster
+    /// the root) keeps its rules: the new root takes them from the old one,
+    /// whose rules are still held until the hooks see its removal, and the
+    /// proxies linked to the old root are linked to the new one. The record
+    /// of each soft body is refreshed on the way (meshes added since).
+    fn follow_moved_roots(&mut self, soft_bodies: &SoftBodySet) {
+        for (handle, body) in soft_bodies.iter() {
+            let Some(seen) = self.soft.known.get_mut(&handle) else {
+                continue;
+            };
+            let (old, new) = (seen.root, body.root_body());
+            *seen = Seen::of(body);
+            if old == new || old == RigidBodyHandle::invalid() {
+                continue;
+            }
+            relink_proxies(&mut self.decide.rules, body, old);
+            // The same body: its record replaces the proxy's (shared: the
+            // old root goes with its cluster).
+            self.decide.rules.give_piece(old, new, false, Heir::NewRoot);
+        }
+    }
+
     /// A cut gives one side the source's colliders and the other Rapier's
     /// copies of them (the source's side may keep the copies), with what the
     /// crate had written on them when the cut was asked for: each copy keeps
-    /// the project's settings of the collider it copies (mesh by mesh), and
-    /// is planned before the next step, as a full pass would. Rules the
-    /// source's colliders held as colliders stay with those colliders.
-    /// `seen` are the source's colliders before the cut: the original of a
-    /// copy whose side lost it since (the project removed it) is found there.
+    /// the project's settings of the collider it copies, and is planned
+    /// before the next step, as a full pass would. Rules the source's
+    /// colliders held as colliders stay with those colliders. `seen` are the
+    /// source's colliders before the cut: the original of a copy whose side
+    /// lost it since (the project removed it) is found there. Which
+    /// original a copy is, is settled before the plan (see
+    /// [`settle_pieces`](Self::settle_pieces)): Rapier does not say, and
+    /// with several meshes the sides' lists need not line up.
     fn copy_settings_across_cut(&mut self, seen: &[ColliderHandle], sides: &[CollidersUnder; 2]) {
         // Whether the crate knows the project's settings of a collider (a
         // copy made by an earlier cut of this step included).
-        let known = |c: ColliderHandle, pieces: &[(ColliderHandle, ColliderHandle)]| {
-            self.planned.written.get(c).is_some() || pieces.iter().any(|p| p.0 == c)
+        let known = |c: ColliderHandle, pieces: &[Copied]| {
+            self.planned.written.get(c).is_some() || pieces.iter().any(|p| p.copy == c)
         };
         for (side, other) in [(0, 1), (1, 0)] {
             for (i, &copy) in sides[side].iter().enumerate() {
                 if known(copy, &self.queued.pieces) {
                     continue;
                 }
-                // Mesh by mesh where the sides still match, else the first.
+                // Mesh by mesh where the sides still match, then the first,
+                // then every other collider of the two lists.
                 let other = &sides[other];
-                let original = [other.get(i), seen.get(i), other.first(), seen.first()]
-                    .into_iter()
-                    .flatten()
-                    .find(|&&c| known(c, &self.queued.pieces));
-                if let Some(&original) = original {
-                    self.queued.pieces.push((copy, original));
+                let mut originals = CollidersUnder::new();
+                let positional = [other.get(i), seen.get(i), other.first(), seen.first()];
+                for &c in positional.into_iter().flatten() {
+                    if !originals.contains(&c) {
+                        originals.push(c);
+                    }
+                }
+                let likeliest = originals.len();
+                for &c in other.iter().chain(seen.iter()) {
+                    if !originals.contains(&c) {
+                        originals.push(c);
+                    }
+                }
+                // A copy of colliders the crate never wrote on holds the
+                // project's settings alone: nothing to settle.
+                if originals[..likeliest].iter().any(|&c| known(c, &self.queued.pieces)) {
+                    self.queued.pieces.push(Copied {
+                        copy,
+                        originals,
+                        likeliest,
+                    });
                     self.queued.candidates.push(copy);
                 }
             }
@@ -278,15 +386,32 @@ impl RuleHooks {
     /// is the project's (a change before the cut is kept, one of the
     /// original after it is not the copy's), and the plan gives the copy
     /// the project's settings with the plan on top, never the crate's old
-    /// bits as if they were the project's.
+    /// bits as if they were the project's. The original is the likeliest
+    /// candidate that holds what the copy holds (Rapier copied that), in
+    /// the world, so that the choice does not depend on which colliders the
+    /// crate wrote on: one it never wrote on leaves the copy with the
+    /// project's settings it holds. Else (the project changed or removed the
+    /// original since the cut) the likeliest candidate the crate wrote on.
     pub(super) fn settle_pieces(&mut self, colliders: &ColliderSet) {
         // In the order of the cuts: a copy of a copy finds its original's
         // record settled.
-        for (copy, original) in std::mem::take(&mut self.queued.pieces) {
-            let Some(&written) = self.planned.written.get(original) else {
+        for Copied {
+            copy,
+            originals,
+            likeliest,
+        } in std::mem::take(&mut self.queued.pieces)
+        {
+            let Some(holds) = colliders.get(copy).map(Settings::of) else {
                 continue;
             };
-            if colliders.contains(copy) {
+            let alike = originals
+                .iter()
+                .find(|&&o| colliders.get(o).map(Settings::of) == Some(holds));
+            let written = match alike {
+                Some(&original) => self.planned.written.get(original).copied(),
+                None => originals[..likeliest].iter().find_map(|&o| self.planned.written.get(o).copied()),
+            };
+            if let Some(written) = written {
                 self.planned.written.insert_evicting(copy, written);
             }
         }

@@ -51,6 +51,7 @@ pub use rule_set::CollisionRuleSet;
 #[cfg(feature = "serde")]
 pub use snapshot::{LoadError, SavedRuleSet};
 pub(crate) use body_kinds::{BodyKinds, dynamic_body, is_dynamic, soft_rigid};
+pub(crate) use pieces::Heir;
 pub(crate) use node::HandleMap;
 pub(crate) use node_rules::CollidersUnder;
 pub(crate) use records::Record;

@@ -5,25 +5,38 @@ use super::super::rapier::prelude::RigidBodyHandle;
 
 use super::super::{CollisionRule, CollisionRuleSet, Node};
 
+/// Which root takes a soft body's rules from the root it had.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Heir {
+    /// The root of a piece split off: rules it holds itself (given to it
+    /// after the split, or to it as a cluster proxy before) stay its own.
+    Piece,
+    /// The body's own new root (its root's cluster went): the body's rules
+    /// replace what the proxy held.
+    NewRoot,
+}
+
 impl CollisionRuleSet {
     /// Gives `piece` (the root body of a soft body split off by a cut or a
     /// tear) the rules of `source` (the root body of the body it came from):
     /// it shares `source`'s record (personal rule, group, its specific
     /// entries, and later edits through either), every entry another node
     /// holds about `source` is held about `piece` too, and `piece` gets
-    /// `source`'s parent. Returns whether anything was given.
+    /// `source`'s parent unless it has one. Returns whether anything was
+    /// given. A [`Heir::Piece`] that holds rules of its own keeps its record.
     ///
     /// With `copy`, `piece` gets a record of its own with a copy of
     /// `source`'s personal rule, group and specific entries instead of
     /// sharing it (for a project that keeps each piece's rules itself, as
     /// the Bevy plugin does with each piece's components).
-    pub(crate) fn give_piece(&mut self, source: RigidBodyHandle, piece: RigidBodyHandle, copy: bool) -> bool {
+    pub(crate) fn give_piece(&mut self, source: RigidBodyHandle, piece: RigidBodyHandle, copy: bool, heir: Heir) -> bool {
         let (from, to) = (Node::Body(source), Node::Body(piece));
         if self.is_removed(to) {
             return false;
         }
         let mut given = false;
-        match self.record(from).filter(|r| !r.is_empty()).cloned() {
+        let own = heir == Heir::Piece && self.record(to).is_some_and(|r| !r.is_empty());
+        match self.record(from).filter(|r| !r.is_empty() && !own).cloned() {
             Some(record) if copy => {
                 self.set_group(to, record.group);
                 self.set_personal(to, record.personal);
@@ -45,7 +58,7 @@ impl CollisionRuleSet {
             }
             given = true;
         }
-        if let Some(parent) = self.parent(source) {
+        if let Some(parent) = self.parent(source).filter(|_| self.parent(piece).is_none()) {
             given |= self.set_parent(piece, parent).is_ok();
         }
         given

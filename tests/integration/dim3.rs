@@ -65,6 +65,11 @@ pub fn blade_at_x(x: f32) -> [Vector; 3] {
     ]
 }
 
+/// Whether a cut of a bar torn in two gives the bar's root to the piece
+/// for some blade (rapier 0.36.1 does in 2D; in 3D the side keeping the
+/// handle keeps its root in every cut the tests try).
+pub const CUT_MOVES_ROOT: bool = false;
+
 /// A small soft body for the random worlds: a 3x2x2 grid of particles.
 pub fn soft_piece(center: Vector) -> SoftBodyBuilder {
     SoftBodyBuilder::cuboid(center, Vector::new(0.4, 0.2, 0.2), 3, 2, 2)

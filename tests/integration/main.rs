@@ -38,6 +38,8 @@ macro_rules! dimension_free_tests {
         pub mod scenes;
         #[path = "soft.rs"]
         mod soft;
+        #[path = "soft_pairs.rs"]
+        mod soft_pairs;
         #[path = "vectors.rs"]
         mod vectors;
         #[path = "world.rs"]
@@ -65,6 +67,8 @@ mod edges;
 mod saving;
 #[cfg(feature = "dim3")]
 mod soak;
+#[cfg(feature = "dim3")]
+mod soft_meshes;
 #[cfg(feature = "dim3")]
 mod stability;
 

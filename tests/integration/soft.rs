@@ -6,7 +6,7 @@
 use super::rapier::prelude::*;
 use super::rules::{CollisionRule, RuleHooks};
 use super::world::edges_across;
-use super::{at, blade_at_x, cube, pose_bits, slab, soft_bar, soft_block};
+use super::{CUT_MOVES_ROOT, at, blade_at_x, cube, pose_bits, slab, soft_bar, soft_block};
 
 const STEPS: usize = 90;
 
@@ -323,6 +323,143 @@ fn a_removed_soft_body_leaves_no_rule_behind() {
     assert!(low > -0.1, "a new soft body starts with no rules: lowest particle at {low}");
 }
 
+/// Removing the cluster of a soft body's root makes another cluster's proxy
+/// its root (rapier 0.36.1): the rules given to the soft body follow it
+/// there, so a rigid collider hung on that proxy still falls through the
+/// ground the soft body ignores.
+#[test]
+fn a_soft_body_whose_root_cluster_is_removed_keeps_its_rules_on_its_new_root() {
+    for given_before_the_cluster in [true, false] {
+        let (mut world, floor) = on_ground();
+        let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
+        let old_root = world.soft_bodies[block].root_body();
+        let mut hooks = RuleHooks::default();
+        if given_before_the_cluster {
+            hooks.rules_mut().set_specific(old_root, floor, CollisionRule::NoPair);
+            hooks.step(&mut world);
+        }
+        let top: Vec<u32> = (0..world.soft_bodies[block].particle_positions().count() as u32)
+            .filter(|&v| world.soft_bodies[block].particle_position(v as usize).y > 0.8)
+            .collect();
+        let cluster = world.add_soft_body_cluster(block, &top).expect("a cluster of the top particles");
+        let proxy = world.soft_bodies[block].cluster_proxy(cluster).expect("its proxy");
+        let ball = world.insert_collider(cube(0.1), Some(proxy));
+        // A third cluster, of the other particles, whose proxy the hooks
+        // link to the old root: it is linked to the new one.
+        let bottom: Vec<u32> = (0..world.soft_bodies[block].particle_positions().count() as u32)
+            .filter(|v| !top.contains(v))
+            .collect();
+        let third = world.add_soft_body_cluster(block, &bottom).expect("a cluster of the bottom particles");
+        let third = world.soft_bodies[block].cluster_proxy(third).expect("its proxy");
+        let other_ball = world.insert_collider(cube(0.1), Some(third));
+        if !given_before_the_cluster {
+            hooks.rules_mut().set_specific(old_root, floor, CollisionRule::NoPair);
+        }
+        hooks.step(&mut world);
+        world.remove_soft_body_cluster(block, 0).expect("the root's cluster goes");
+        let root = world.soft_bodies[block].root_body();
+        assert_ne!(root, old_root, "the soft body has a new root");
+        for _ in 0..STEPS {
+            hooks.step(&mut world);
+        }
+        let case = format!("rule given before the cluster: {given_before_the_cluster}");
+        assert_eq!(hooks.rules().specific(root, floor), CollisionRule::NoPair, "{case}: the new root's entry");
+        let y = world.colliders[ball].translation().y;
+        assert!(y < -1.0, "{case}: the collider on the new root fell to {y}");
+        let y = world.colliders[other_ball].translation().y;
+        assert!(y < -1.0, "{case}: the collider on the third cluster fell to {y}");
+        assert_eq!(hooks.rules().parent(third), Some(root), "{case}: the third cluster's proxy is linked to the new root");
+    }
+}
+
+/// A soft body cut before the hooks ever saw it, its root already named
+/// by a rule: whichever side Rapier gives the old root, both sides keep the
+/// rule (the hooks find it on the root the rules name).
+#[test]
+fn a_soft_body_cut_before_its_first_step_keeps_its_rule_on_both_sides() {
+    let (mut moved, mut cuts) = (false, 0);
+    for x in [-0.6, -0.4, -0.2, 0.2, 0.4, 0.6] {
+        let (mut world, floor) = on_ground();
+        let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
+        // Torn in two first: the side that keeps the handle has clusters
+        // the tear made.
+        let edges = edges_across_middle(&world, bar);
+        world.tear_soft_body(bar, &edges, &[]).expect("the bar tears");
+        let root = world.soft_bodies[bar].root_body();
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_specific(floor, root, CollisionRule::NoPair);
+        let Some(cut) = world.cut_soft_body(bar, &blade_at_x(x)) else {
+            continue;
+        };
+        cuts += 1;
+        moved |= world.soft_bodies[bar].root_body() != root;
+        for _ in 0..STEPS {
+            hooks.step(&mut world);
+        }
+        for piece in cut.bodies() {
+            let low = lowest(&world, piece);
+            assert!(low < -1.0, "cut at x = {x}: piece {piece:?} rests at {low}");
+        }
+    }
+    // The blades across the half that keeps the handle cut it.
+    assert!(cuts >= 2, "only {cuts} of the 6 blades cut the torn bar");
+    assert_eq!(moved, CUT_MOVES_ROOT, "whether a cut gave the bar's root to the piece");
+}
+
+/// A bar torn in two, with a cluster per column, then cut twice before a
+/// step, for many pairs of blades: no soft body's root or proxy is left
+/// the child of another soft body's root (the second cut's piece is found
+/// against the root the hooks knew before both cuts, not the one the
+/// first cut left), and every piece keeps the rule.
+#[test]
+fn a_soft_body_cut_twice_before_a_step_links_no_piece_to_another() {
+    let xs: Vec<f32> = (-6..=6).map(|i| i as f32 * 0.15).collect();
+    let mut cut_twice = 0;
+    for &first in &xs {
+        for &second in &xs {
+            let (mut world, floor) = on_ground();
+            let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
+            let positions: Vec<Vector> = world.soft_bodies[bar].particle_positions().collect();
+            // A cluster per column of particles.
+            let mut columns: Vec<f32> = positions.iter().map(|p| p.x).collect();
+            columns.sort_by(f32::total_cmp);
+            columns.dedup_by(|a, b| (*a - *b).abs() < 1.0e-4);
+            for &x in &columns {
+                let column: Vec<u32> = (0..positions.len() as u32)
+                    .filter(|&v| (positions[v as usize].x - x).abs() < 1.0e-4)
+                    .collect();
+                world.add_soft_body_cluster(bar, &column).expect("a cluster of a column");
+            }
+            let root = world.soft_bodies[bar].root_body();
+            let mut hooks = RuleHooks::default();
+            hooks.rules_mut().set_specific(floor, root, CollisionRule::NoPair);
+            hooks.step(&mut world);
+            let edges = edges_across_middle(&world, bar);
+            world.tear_soft_body(bar, &edges, &[]);
+            hooks.step(&mut world);
+            let cuts = [first, second].iter().filter(|&&x| world.cut_soft_body(bar, &blade_at_x(x)).is_some()).count();
+            cut_twice += usize::from(cuts == 2);
+            hooks.step(&mut world);
+            let case = format!("blades at {first} and {second}");
+            let roots: Vec<RigidBodyHandle> = world.soft_bodies.iter().map(|(_, b)| b.root_body()).collect();
+            for (handle, body) in world.soft_bodies.iter() {
+                let own = body.root_body();
+                let parent = hooks.rules().parent(own);
+                assert!(parent.is_none_or(|p| !roots.contains(&p)), "{case}: soft body {handle:?}'s root is the child of {parent:?}");
+                for (_, cluster) in body.live_clusters() {
+                    let linked = hooks.rules().parent(cluster.proxy());
+                    assert!(
+                        cluster.proxy() == own || linked.is_none_or(|p| p == own),
+                        "{case}: a proxy of {handle:?} is the child of {linked:?}, not of its root {own:?}"
+                    );
+                }
+                assert_eq!(hooks.rules().specific(floor, own), CollisionRule::NoPair, "{case}: soft body {handle:?} lost the rule");
+            }
+        }
+    }
+    assert!(cut_twice >= 3, "only {cut_twice} pairs of blades cut the bar twice");
+}
+
 /// The edges of `body` that cross x = 0: tearing them splits a bar.
 fn edges_across_middle(world: &PhysicsWorld, body: SoftBodyHandle) -> Vec<u32> {
     edges_across(&world.soft_bodies[body], 0.0)
@@ -599,5 +736,47 @@ fn a_piece_whose_source_is_removed_before_the_step_keeps_the_rule() {
             let low = lowest(&world, piece);
             assert!(low < -1.0, "{way:?}: piece {piece:?} rests at {low} (bodies {counts:?} before the cut, {after:?} after the removal)");
         }
+    }
+}
+
+/// A soft block asleep on the ground wakes for a rule given while it
+/// sleeps, and moves as the rule says; put back to sleep by hand (its root
+/// body's `sleep`, which Rapier extends to the soft body), it wakes for an
+/// edit again.
+#[test]
+fn a_sleeping_soft_body_wakes_for_a_new_rule() {
+    for rule in [CollisionRule::NoResponse, CollisionRule::NoContacts, CollisionRule::NoPair] {
+        let (mut world, floor) = on_ground();
+        let block = world.insert_soft_body(soft_block(at(0.0, 0.6), 0.5));
+        let root = world.soft_bodies[block].root_body();
+        let mut hooks = RuleHooks::default();
+        let mut steps = 0;
+        while !world.soft_bodies[block].is_sleeping() {
+            assert!(steps < 600, "{rule:?}: the block never fell asleep (lowest particle at {})", lowest(&world, block));
+            hooks.step(&mut world);
+            steps += 1;
+        }
+        let rested = lowest(&world, block);
+        // A Normal rule wakes it (an edit wakes what it reaches) and lets it
+        // rest; put back to sleep by hand, it sleeps through a step.
+        hooks.rules_mut().set_specific(floor, root, CollisionRule::Normal);
+        hooks.step(&mut world);
+        world.bodies[root].sleep();
+        hooks.step(&mut world);
+        let low = lowest(&world, block);
+        assert!(
+            world.soft_bodies[block].is_sleeping() && low > -0.1,
+            "{rule:?}: with Normal the block should sleep on the floor again: asleep {}, lowest particle at {low}",
+            world.soft_bodies[block].is_sleeping()
+        );
+        hooks.rules_mut().set_specific(floor, root, rule);
+        for _ in 0..STEPS {
+            hooks.step(&mut world);
+        }
+        let low = lowest(&world, block);
+        assert!(
+            !world.soft_bodies[block].is_sleeping() && low < -1.0,
+            "{rule:?}: asleep after {steps} steps at {rested}, the block should wake and fall through: lowest particle at {low}"
+        );
     }
 }

@@ -61,6 +61,12 @@ pub enum Edit {
     TearSoft(usize),
     /// A soft body removed, with its proxies and colliders.
     RemoveSoft(usize),
+    /// A soft body put to sleep by hand (its root body's `sleep`, which
+    /// Rapier extends to the soft body and the island it touches).
+    SleepSoft(usize),
+    /// A cluster of a soft body's upper particles added and its root's
+    /// cluster removed: another cluster's proxy becomes the root.
+    NewSoftRoot(usize),
     /// A soft bar pinned at both ends, the ends pulled apart step by step
     /// until it tears during a Rapier step (a strain tear).
     AddTearable(f32, f32),
@@ -69,6 +75,14 @@ pub enum Edit {
     /// (with `serde`): loads as an error or as a rule set the hooks keep
     /// clean.
     Corrupt(usize, u32),
+}
+
+/// What the rules held before a split (see `Run::check_pieces`).
+struct Held {
+    /// On the source's root.
+    source: (CollisionRule, Option<CollisionGroup>),
+    /// On every cluster proxy of every soft body.
+    own: HashMap<RigidBodyHandle, (CollisionRule, Option<CollisionGroup>)>,
 }
 
 /// Layer sets a project may use as memberships or filters.
@@ -288,6 +302,48 @@ impl Run {
         }
     }
 
+    /// What the rules hold on a soft body's root: its personal rule and
+    /// group.
+    fn soft_rules(&self, root: RigidBodyHandle) -> (CollisionRule, Option<CollisionGroup>) {
+        let rules = self.hooks.rules();
+        (rules.personal(root), rules.group(root))
+    }
+
+    /// What the rules hold, before a cut or a tear, on the source's root
+    /// and on every body that may become a piece's root (the proxies of
+    /// every soft body's clusters), once the hooks have followed what came
+    /// before (a piece takes what its source holds when the hooks first
+    /// see it: an edit between an earlier split and that reaches it too).
+    fn before_split(&mut self, root: RigidBodyHandle) -> Held {
+        self.hooks.follow_soft_bodies(&self.world.soft_bodies, &self.world.bodies);
+        let proxies = self.world.soft_bodies.iter().flat_map(|(_, b)| b.live_clusters().map(|(_, c)| c.proxy()));
+        Held {
+            source: self.soft_rules(root),
+            own: proxies.map(|p| (p, self.soft_rules(p))).collect(),
+        }
+    }
+
+    /// Every soft body a cut or a tear left holds on its root the rules the
+    /// source's root held before it, once the hooks follow, unless its root
+    /// held rules of its own then (a proxy the edits gave rules, or a piece
+    /// of an earlier split): it keeps those. A check of its own, beside the
+    /// comparisons of whole runs, which follow alike.
+    fn check_pieces(&mut self, split: Option<SoftBodyTearEvent>, held: Held) {
+        let Some(split) = split else {
+            return;
+        };
+        self.hooks.follow_soft_bodies(&self.world.soft_bodies, &self.world.bodies);
+        for piece in split.bodies() {
+            let Some(body) = self.world.soft_bodies.get(piece) else {
+                continue;
+            };
+            let root = body.root_body();
+            let own = held.own.get(&root).copied().filter(|&r| r != (CollisionRule::Defer, None));
+            let expected = own.unwrap_or(held.source);
+            assert_eq!(self.soft_rules(root), expected, "piece {piece:?} (root {root:?}) of {:?}", split.soft_body);
+        }
+    }
+
     /// Whether `other` names the same objects as this run, so that the
     /// same edits do the same to both: a cut of a soft body that moved
     /// differently in each may split it differently.
@@ -385,17 +441,21 @@ impl Run {
                 let Some((soft, body)) = self.soft(i) else {
                     return;
                 };
-                let middle = middle_x(body) + 0.01;
-                self.world.cut_soft_body(soft, &blade_at_x(middle));
+                let (middle, root) = (middle_x(body) + 0.01, body.root_body());
+                let held = self.before_split(root);
+                let cut = self.world.cut_soft_body(soft, &blade_at_x(middle));
                 self.adopt_pieces();
+                self.check_pieces(cut, held);
             }
             Edit::TearSoft(i) => {
                 let Some((soft, body)) = self.soft(i) else {
                     return;
                 };
-                let edges = edges_across(body, middle_x(body));
-                self.world.tear_soft_body(soft, &edges, &[]);
+                let (edges, root) = (edges_across(body, middle_x(body)), body.root_body());
+                let held = self.before_split(root);
+                let tear = self.world.tear_soft_body(soft, &edges, &[]);
                 self.adopt_pieces();
+                self.check_pieces(tear, held);
             }
             Edit::RemoveSoft(i) => {
                 let Some((soft, body)) = self.soft(i) else {
@@ -404,6 +464,43 @@ impl Run {
                 let meshes: Vec<ColliderHandle> = body.meshes().map(|m| m.collider()).collect();
                 if self.world.remove_soft_body(soft).is_some() {
                     self.removed.extend(meshes);
+                }
+            }
+            Edit::SleepSoft(i) => {
+                let Some((_, body)) = self.soft(i) else {
+                    return;
+                };
+                let root = body.root_body();
+                if let Some(root) = self.world.bodies.get_mut(root) {
+                    root.sleep();
+                }
+            }
+            Edit::NewSoftRoot(i) => {
+                let Some((soft, body)) = self.soft(i) else {
+                    return;
+                };
+                let Some((root_cluster, _)) = body.live_clusters().find(|(_, c)| c.proxy() == body.root_body()) else {
+                    return;
+                };
+                let middle = body.particle_positions().map(|p| p.y).sum::<f32>() / body.particle_positions().count().max(1) as f32;
+                let upper: Vec<u32> = (0..body.particle_positions().count() as u32)
+                    .filter(|&v| body.particle_position(v as usize).y > middle)
+                    .collect();
+                if self.world.add_soft_body_cluster(soft, &upper).is_some() {
+                    let meshes: Vec<ColliderHandle> = self.world.soft_bodies[soft].meshes().map(|m| m.collider()).collect();
+                    self.world.remove_soft_body_cluster(soft, root_cluster);
+                    // The root's meshes go with its cluster.
+                    if let Some(body) = self.world.soft_bodies.get(soft) {
+                        let left: Vec<ColliderHandle> = body.meshes().map(|m| m.collider()).collect();
+                        self.removed.extend(meshes.into_iter().filter(|c| !left.contains(c)));
+                        let root = body.root_body();
+                        if !self.bodies.contains(&root) {
+                            self.bodies.push(root);
+                        }
+
+                    } else {
+                        self.removed.extend(meshes);
+                    }
                 }
             }
             Edit::AddTearable(x, y) => {

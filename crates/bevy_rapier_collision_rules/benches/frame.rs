@@ -225,9 +225,11 @@ fn main() {
     if count_only() {
         return;
     }
-    let repeats = 5;
+    // Enough repeats for a median that a busy machine's stray slow frames
+    // do not move (the minimum and maximum are printed beside it).
+    let repeats = 11;
     println!(
-        "scene        rules   plain ms/frame  ratio to plain (min-max over {repeats} repeats)"
+        "scene        rules   plain ms/frame  ratio to plain (min, median, max over {repeats} repeats)"
     );
     for scene in [Scene::PileAsleep, Scene::Level, Scene::PileAwake] {
         let with_controllers = (scene == Scene::Level).then_some(Rules::Controllers);
@@ -248,11 +250,11 @@ fn main() {
                 ratios.push(tw / tp);
                 plain_ms.push(tp / frames as f64 * 1e3);
             }
-            let min = ratios.iter().copied().fold(f64::MAX, f64::min);
-            let max = ratios.iter().copied().fold(0.0, f64::max);
+            ratios.sort_by(f64::total_cmp);
+            let (min, median, max) = (ratios[0], ratios[repeats / 2], ratios[repeats - 1]);
             let ms = plain_ms.iter().sum::<f64>() / plain_ms.len() as f64;
             println!(
-                "{:<12} {:<7} {ms:>14.3}  {min:.3}-{max:.3}",
+                "{:<12} {:<7} {ms:>14.3}  {min:.3}, {median:.3}, {max:.3}",
                 format!("{scene:?}"),
                 format!("{rules:?}")
             );

@@ -29,7 +29,7 @@ type Handles = (
 #[derive(SystemParam)]
 pub(crate) struct Objects<'w, 's> {
     handles: Query<'w, 's, Handles>,
-    sets: Query<'w, 's, &'static RapierRigidBodySet>,
+    sets: Query<'w, 's, (Entity, &'static RapierRigidBodySet)>,
 }
 
 impl Objects<'_, '_> {
@@ -37,13 +37,21 @@ impl Objects<'_, '_> {
     /// body (its colliders inherit them), the root body of an entity with a
     /// soft body (its surface colliders and cluster proxies inherit them,
     /// `docs/semantics.md`, "Soft bodies"), else its collider.
+    ///
+    /// The entity of a piece of a cut made in `Update` has none of
+    /// bevy_rapier's components until the next writeback, but bevy_rapier
+    /// maps it to its soft body at once: that soft body's root is its place.
     pub(crate) fn place_of(&self, entity: Entity) -> Option<Place> {
         let (body, soft, collider, link) = self.handles.get(entity).ok()?;
-        let context = link?.0;
+        let Some(link) = link else {
+            let bare = body.is_none() && soft.is_none() && collider.is_none();
+            return bare.then(|| self.unsynced_soft_body(entity)).flatten();
+        };
+        let context = link.0;
         let node = match (body, soft, collider) {
             (Some(body), _, _) => Node::from(body.0),
             (None, Some(soft), _) => {
-                let set = self.sets.get(context).ok()?;
+                let (_, set) = self.sets.get(context).ok()?;
                 Node::from(set.soft_bodies.get(soft.0)?.root_body())
             }
             (None, None, Some(collider)) => Node::from(collider.0),
@@ -52,10 +60,48 @@ impl Objects<'_, '_> {
         Some((context, node))
     }
 
+    /// The place of an entity bevy_rapier mapped to a soft body before
+    /// giving it its components.
+    fn unsynced_soft_body(&self, entity: Entity) -> Option<Place> {
+        self.sets.iter().find_map(|(context, set)| {
+            set.soft_body(entity)
+                .map(|body| (context, Node::from(body.root_body())))
+        })
+    }
+
     /// Whether `entity` exists.
     fn exists(&self, entity: Entity) -> bool {
         self.handles.contains(entity)
     }
+
+    /// The tear that moved `entity`'s soft body off the root at `was`, if
+    /// one did: rapier 0.36.1 gives the soft body that keeps the handle a
+    /// new root and the piece the old one.
+    fn tear_of(&self, entity: Entity, was: Place) -> Option<Tear> {
+        let now = self.place_of(entity)?;
+        let (context, Node::Body(old_root)) = was else {
+            return None;
+        };
+        if now == was || now.0 != context {
+            return None;
+        }
+        self.handles.get(entity).ok()?.1?;
+        let (_, set) = self.sets.get(context).ok()?;
+        let (handle, _) = set
+            .soft_bodies
+            .iter()
+            .find(|(_, body)| body.root_body() == old_root)?;
+        let piece = set.soft_body_entity(handle).filter(|&p| p != entity)?;
+        Some(Tear { now, piece })
+    }
+}
+
+/// A soft body entity's tear, seen from the rules' side.
+struct Tear {
+    /// The entity's place now (its new root).
+    now: Place,
+    /// The entity of the piece that holds the old root.
+    piece: Entity,
 }
 
 type Carried = (
@@ -124,6 +170,7 @@ pub(crate) fn apply_rule_components(
     softs: Query<Entity, RuledSoftBodies>,
 ) {
     let ledger = &mut *ledger;
+    follow_tears(ledger, &objects, &softs);
     let mut dirty: Vec<Entity> = edited.iter().collect();
     dirty.extend(
         softs
@@ -147,6 +194,63 @@ pub(crate) fn apply_rule_components(
     for entity in dirty {
         let components = carried.get(entity).unwrap_or((None, None, None));
         apply(ledger, &mut contexts, &objects, entity, components);
+    }
+}
+
+/// The ledger follows the tears the rule set followed
+/// ([`follow_soft_bodies`](crate::collision_rules::RuleHooks::follow_soft_bodies),
+/// run before: both roots hold the torn body's rules). The torn entity's
+/// rules are now at its new root; the piece's entity holds them at the old
+/// root (bevy_rapier copies the torn entity's components onto it in the
+/// next writeback, which then changes nothing); the entries that name the
+/// torn entity name the piece too. So nothing is taken back from the piece
+/// in between, and it steps with its rules from the frame of the tear
+/// (`docs/bevy.md`, "Soft bodies").
+fn follow_tears(ledger: &mut Ledger, objects: &Objects, softs: &Query<Entity, RuledSoftBodies>) {
+    for soft in softs {
+        let Some(applied) = ledger.applied.get(&soft) else {
+            continue;
+        };
+        let Some(tear) = objects.tear_of(soft, applied.place) else {
+            continue;
+        };
+        let held = applied.clone();
+        if !ledger.applied.contains_key(&tear.piece) {
+            for &(target, node, _) in &held.specific {
+                let at = objects.place_of(target).map(|(c, _)| (c, node));
+                ledger.name(tear.piece, target, at);
+            }
+            ledger.applied.insert(tear.piece, held);
+        }
+        if let Some(applied) = ledger.applied.get_mut(&soft) {
+            applied.place = tear.now;
+        }
+    }
+    let torn: Vec<(Entity, Place, Tear)> = ledger
+        .named
+        .iter()
+        .filter_map(|(&target, named)| {
+            let at = named.at?;
+            objects.tear_of(target, at).map(|tear| (target, at, tear))
+        })
+        .collect();
+    for (target, at, tear) in torn {
+        let by: Vec<Entity> = ledger.named[&target].by.iter().copied().collect();
+        for entity in by {
+            let Some(applied) = ledger.applied.get_mut(&entity) else {
+                continue;
+            };
+            let mut pieces = Vec::new();
+            for entry in applied.specific.iter_mut().filter(|e| e.0 == target) {
+                entry.1 = tear.now.1;
+                pieces.push((tear.piece, at.1, entry.2));
+            }
+            applied.specific.extend(pieces);
+            ledger.name(entity, tear.piece, Some(at));
+        }
+        if let Some(named) = ledger.named.get_mut(&target) {
+            named.at = Some(tear.now);
+        }
     }
 }
 

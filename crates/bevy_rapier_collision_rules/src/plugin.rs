@@ -15,7 +15,7 @@ use super::ledger::Ledger;
 use super::misuse::check_hooks;
 use super::project::notice_project_settings;
 use super::queries::{filter_controllers, restore_controller};
-use super::step::{finish_contexts, prepare_contexts};
+use super::step::{finish_contexts, follow_soft_bodies, prepare_contexts};
 use super::{CollisionRules, ContextRuleTable, PersonalRule, RuleGroup, RuleTable, SpecificRules};
 
 /// The plugin's systems.
@@ -134,6 +134,7 @@ impl Plugin for CollisionRulesPlugin {
         let prepare = (
             share_table,
             follow_hierarchy,
+            follow_soft_bodies,
             name_tear_pieces,
             apply_rule_components,
             notice_project_settings,

@@ -10,6 +10,18 @@ use bevy_rapier::plugin::context::{
 
 use super::CollisionRules;
 
+/// Before the rule components are applied: the pieces of tears take their
+/// source's rules in the rule set, so that the ledger can follow the tear
+/// (`docs/bevy.md`, "Soft bodies"). `prepare_contexts` follows again, for
+/// the soft bodies the components just gave rules.
+pub(crate) fn follow_soft_bodies(mut contexts: Query<(&mut CollisionRules, &RapierRigidBodySet)>) {
+    for (mut rules, set) in &mut contexts {
+        rules
+            .hooks_mut()
+            .follow_soft_bodies(&set.soft_bodies, &set.bodies);
+    }
+}
+
 /// Before the step: plans the colliders' flags and groups, recalculates
 /// the live pairs the edits reach, and wakes their bodies.
 pub(crate) fn prepare_contexts(

@@ -301,3 +301,48 @@ fn a_despawned_soft_body_leaves_no_rules_behind() {
     let left = sim.rules().rules().nodes().count();
     assert_eq!(left, 0, "nodes left with rules after the despawn");
 }
+
+/// A piece despawned after its cut takes its rules with it, as a despawned
+/// soft body does, and leaves the bar's. (A piece despawned in the frame of
+/// its cut, before bevy_rapier 0.37 gave it its components, makes
+/// bevy_rapier panic as it copies them: `docs/bevy.md`, "Soft bodies".)
+#[cfg(feature = "dim3")]
+#[test]
+fn a_despawned_piece_leaves_no_rules_behind() {
+    for how in [Split::Cut, Split::Tear] {
+        let mut sim = Sim::new();
+        let bar = sim.spawn((
+            Transform::from_xyz(0.0, 0.3, 0.0),
+            SoftBody::cuboid(Vec3::new(1.0, 0.25, 0.25), 6, 2, 2),
+            PersonalRule(NoPair),
+        ));
+        sim.spawn(floor());
+        sim.run(1);
+        let held = sim.rules().rules().nodes().count();
+        let pieces = split(&mut sim, bar, how);
+        sim.run(1);
+        let split_held = sim.rules().rules().nodes().count();
+        assert!(
+            split_held > held,
+            "{how:?}: the pieces hold rules: {split_held} nodes, the bar had {held}"
+        );
+        for &piece in &pieces[1..] {
+            sim.app.world_mut().despawn(piece);
+        }
+        sim.run(3);
+        let left = sim.rules().rules().nodes().count();
+        assert_eq!(
+            left, held,
+            "{how:?}: nodes with rules after the pieces were despawned (the bar alone had {held})"
+        );
+        let context = sim.context();
+        let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
+        let root = set.soft_body(bar).expect("the bar's soft body").root_body();
+        let rules = sim.app.world().get::<CollisionRules>(context).unwrap();
+        assert_eq!(
+            rules.rules().personal(root),
+            NoPair,
+            "{how:?}: the bar keeps its rule"
+        );
+    }
+}

@@ -69,6 +69,14 @@ impl Objects<'_, '_> {
         })
     }
 
+    /// Whether `entity` is a piece of a cut or tear that bevy_rapier has
+    /// mapped to its soft body but not yet given its components: the tear's
+    /// message, from which [`name_tear_pieces`] names it, comes with them.
+    fn awaits_its_tear_message(&self, entity: Entity) -> bool {
+        matches!(self.handles.get(entity), Ok((None, None, None, None)))
+            && self.unsynced_soft_body(entity).is_some()
+    }
+
     /// Whether `entity` exists.
     fn exists(&self, entity: Entity) -> bool {
         self.handles.contains(entity)
@@ -323,6 +331,17 @@ fn apply(
             None => {
                 ledger.waiting.insert(entity);
             }
+        }
+    }
+    // An entry the book gave about a piece of a tear that moved a root
+    // ([`follow_tears`]) stays until the tear's message names the piece in
+    // the components: a cut made in `Update` sends it only with the next
+    // writeback, and the piece steps before.
+    for &(target, target_node, rule) in &before.specific {
+        let named = entries.iter().any(|&(t, _, _)| t == target);
+        if !named && objects.awaits_its_tear_message(target) {
+            ledger.name(entity, target, objects.place_of(target));
+            entries.push((target, target_node, rule));
         }
     }
     for &(_, target_node, _) in &before.specific {

@@ -2,11 +2,9 @@
 //! `SoftBody` entity carries `RuleGroup`, `PersonalRule` and
 //! `SpecificRules` as a rigid body's does, against the same scene without
 //! the floor; the pieces of a cut keep the rules, and a despawned soft body
-//! leaves none behind. In 2D the jelly is a grid; the cuts and tears are
-//! built in 3D (the core's integration tests cut and tear 2D soft bodies).
+//! leaves none behind. In 2D the jelly and the bar are grids.
 
 use CollisionRule::*;
-#[cfg(feature = "dim3")]
 use bevy::ecs::system::RunSystemOnce;
 use bevy::prelude::*;
 use bevy_rapier::plugin::context::RapierRigidBodySet;
@@ -109,11 +107,18 @@ fn a_soft_body_entity_obeys_every_rule_from_every_component() {
     }
 }
 
+/// A bar 2 m long and 0.5 m thick, of 6 particles along it and 2 across.
+fn bar() -> SoftBody {
+    #[cfg(feature = "dim3")]
+    return SoftBody::cuboid(Vec3::new(1.0, 0.25, 0.25), 6, 2, 2);
+    #[cfg(feature = "dim2")]
+    return SoftBody::grid(Vec2::new(1.0, 0.25), 6, 2);
+}
+
 /// How a soft body is split in two.
-#[cfg(feature = "dim3")]
 #[derive(Clone, Copy, Debug)]
 enum Split {
-    /// `cut_soft_body` across x = 0.1.
+    /// `cut_soft_body` across x = 0.1 (or the x given).
     Cut,
     /// `tear_soft_body` along the edges across x = 0.
     Tear,
@@ -121,13 +126,21 @@ enum Split {
 
 /// Splits the soft body of `soft` and returns the entities of the pieces
 /// (the first is `soft`).
-#[cfg(feature = "dim3")]
 fn split(sim: &mut Sim, soft: Entity, how: Split) -> Vec<Entity> {
+    split_at(sim, soft, how, 0.1).expect("the bar splits")
+}
+
+/// Splits the soft body of `soft` as [`split`] does, a cut across x =
+/// `x`: the entities of the pieces, if it split.
+fn split_at(sim: &mut Sim, soft: Entity, how: Split, x: f32) -> Option<Vec<Entity>> {
+    #[cfg(feature = "dim3")]
     let blade = [
-        Vec3::new(0.1, -10.0, -10.0),
-        Vec3::new(0.1, 20.0, -10.0),
-        Vec3::new(0.1, -10.0, 20.0),
+        Vec3::new(x, -10.0, -10.0),
+        Vec3::new(x, 20.0, -10.0),
+        Vec3::new(x, -10.0, 20.0),
     ];
+    #[cfg(feature = "dim2")]
+    let blade = [Vec2::new(x, -10.0), Vec2::new(x, 20.0)];
     sim.app
         .world_mut()
         .run_system_once(
@@ -151,14 +164,12 @@ fn split(sim: &mut Sim, soft: Entity, how: Split) -> Vec<Entity> {
             },
         )
         .unwrap()
-        .expect("the bar splits")
 }
 
 /// A bar cut or torn after one frame, its lower face 0.15 m inside the
 /// floor's top (or over no floor: then a personal rule, which also holds
 /// between the pieces, is given alone): the particles of each piece after
 /// the frames, and the sim with the pieces' entities.
-#[cfg(feature = "dim3")]
 fn split_bar(
     with_floor: bool,
     rule: CollisionRule,
@@ -166,10 +177,7 @@ fn split_bar(
     how: Split,
 ) -> (Sim, Vec<Entity>, Option<Entity>, Vec<Vec<u32>>) {
     let mut sim = Sim::new();
-    let bar = sim.spawn((
-        Transform::from_xyz(0.0, 0.1, 0.0),
-        SoftBody::cuboid(Vec3::new(1.0, 0.25, 0.25), 6, 2, 2),
-    ));
+    let bar = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
     let f = with_floor.then(|| {
         let f = sim.spawn(floor());
         give(&mut sim, bar, f, rule, given);
@@ -199,7 +207,6 @@ fn split_bar(
 /// The pieces hold the rules from the frame of the cut on: each moves bit
 /// for bit as the same piece cut from a bar over no floor (a piece that
 /// stepped once without its rules inside the floor would be thrown up).
-#[cfg(feature = "dim3")]
 #[test]
 fn the_pieces_of_a_cut_or_a_tear_keep_the_soft_bodys_rules() {
     for how in [Split::Cut, Split::Tear] {
@@ -240,15 +247,112 @@ fn the_pieces_of_a_cut_or_a_tear_keep_the_soft_bodys_rules() {
     }
 }
 
+/// The root body of `soft`'s soft body.
+#[cfg(feature = "dim2")]
+fn root_of(sim: &mut Sim, soft: Entity) -> bevy_rapier::rapier::prelude::RigidBodyHandle {
+    let context = sim.context();
+    let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
+    set.soft_body(soft).expect("a soft body entity").root_body()
+}
+
+/// What became of a bar torn in two and then cut across x = `x` (as
+/// [`split_bar`], over the floor with `NoPair` given as `given`, or over
+/// no floor), if the cut split it.
+#[cfg(feature = "dim2")]
+struct TornThenCut {
+    /// Whether the cut gave the bar's root to its piece.
+    moved: bool,
+    /// Each piece's lowest particle, and its particles' bits.
+    pieces: Vec<(Entity, f32, Vec<u32>)>,
+}
+
+#[cfg(feature = "dim2")]
+fn torn_then_cut(with_floor: bool, given: Given, x: f32) -> Option<TornThenCut> {
+    let mut sim = Sim::new();
+    let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
+    if with_floor {
+        let f = sim.spawn(floor());
+        give(&mut sim, bar_entity, f, NoPair, given);
+    } else if matches!(given, Given::Personal) {
+        sim.entity_mut(bar_entity).insert(PersonalRule(NoPair));
+    }
+    sim.run(1);
+    let mut pieces = split(&mut sim, bar_entity, Split::Tear);
+    sim.run(1);
+    let root = root_of(&mut sim, bar_entity);
+    let cut = split_at(&mut sim, bar_entity, Split::Cut, x)?;
+    let moved = root_of(&mut sim, bar_entity) != root;
+    for piece in cut {
+        if !pieces.contains(&piece) {
+            pieces.push(piece);
+        }
+    }
+    sim.run(FRAMES);
+    let pieces = pieces
+        .into_iter()
+        .map(|piece| {
+            let low = lowest(&mut sim, piece);
+            let context = sim.context();
+            let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
+            let bits = set
+                .soft_body(piece)
+                .expect("a piece's soft body")
+                .particle_positions()
+                .flat_map(|p| p.to_array())
+                .map(f32::to_bits)
+                .collect();
+            (piece, low, bits)
+        })
+        .collect();
+    Some(TornThenCut { moved, pieces })
+}
+
+/// A bar torn in two, then cut across the half that keeps the entity, for
+/// several blades, lying 0.15 m inside the floor with `NoPair` given each
+/// way: every piece moves bit for bit as over no floor. Some cut gives the
+/// bar's root to its piece (rapier 0.36.1 in 2D), which takes the plugin's
+/// book along the path for a moved root (`docs/bevy.md`, "Soft bodies").
+/// In 3D the same scene is a known gap, not passed yet (`docs/bevy.md`,
+/// "Known gap: a torn bar cut again in 3D").
+#[cfg(feature = "dim2")]
+#[test]
+fn a_torn_bar_cut_again_keeps_its_rules_on_every_piece_whichever_root_moves() {
+    let (mut moved, mut cuts) = (false, 0);
+    for x in [-0.6, -0.4, -0.2, 0.2, 0.4, 0.6] {
+        for given in GIVENS {
+            let Some(over_floor) = torn_then_cut(true, given, x) else {
+                continue;
+            };
+            let alone = torn_then_cut(false, given, x).expect("the same cut over no floor");
+            cuts += 1;
+            moved |= over_floor.moved;
+            assert_eq!(
+                over_floor.pieces.len(),
+                alone.pieces.len(),
+                "cut at x = {x}, {given:?}: pieces"
+            );
+            for (piece, alone) in over_floor.pieces.iter().zip(&alone.pieces) {
+                let (entity, low, bits) = piece;
+                assert!(
+                    *bits == alone.2,
+                    "cut at x = {x}, {given:?}: piece {entity:?} (lowest particle at {low}, {} over no floor) moved otherwise than over no floor",
+                    alone.1
+                );
+            }
+        }
+    }
+    assert!(cuts >= 2 * GIVENS.len(), "only {cuts} cuts of the torn bar");
+    assert!(moved, "no cut gave the bar's root to its piece");
+}
+
 /// The pieces' rules are their own: a new `PersonalRule` on one piece
 /// changes that piece alone, in its component and in the rule set.
-#[cfg(feature = "dim3")]
 #[test]
 fn a_pieces_rules_are_its_own() {
     let mut sim = Sim::new();
     let bar = sim.spawn((
         Transform::from_xyz(0.0, 0.3, 0.0),
-        SoftBody::cuboid(Vec3::new(1.0, 0.25, 0.25), 6, 2, 2),
+        bar(),
         PersonalRule(NoPair),
     ));
     sim.spawn(floor());
@@ -306,14 +410,13 @@ fn a_despawned_soft_body_leaves_no_rules_behind() {
 /// soft body does, and leaves the bar's. (A piece despawned in the frame of
 /// its cut, before bevy_rapier 0.37 gave it its components, makes
 /// bevy_rapier panic as it copies them: `docs/bevy.md`, "Soft bodies".)
-#[cfg(feature = "dim3")]
 #[test]
 fn a_despawned_piece_leaves_no_rules_behind() {
     for how in [Split::Cut, Split::Tear] {
         let mut sim = Sim::new();
         let bar = sim.spawn((
             Transform::from_xyz(0.0, 0.3, 0.0),
-            SoftBody::cuboid(Vec3::new(1.0, 0.25, 0.25), 6, 2, 2),
+            bar(),
             PersonalRule(NoPair),
         ));
         sim.spawn(floor());

@@ -345,10 +345,8 @@ fn a_torn_bar_cut_again_keeps_its_rules_on_every_piece_whichever_root_moves() {
     assert!(moved, "no cut gave the bar's root to its piece");
 }
 
-/// The pieces' rules are their own: a new `PersonalRule` on one piece
-/// changes that piece alone, in its component and in the rule set.
-#[test]
-fn a_pieces_rules_are_its_own() {
+/// A bar with `PersonalRule(NoPair)` 0.05 m over the floor, after a frame.
+fn bar_over_floor() -> (Sim, Entity) {
     let mut sim = Sim::new();
     let bar = sim.spawn((
         Transform::from_xyz(0.0, 0.3, 0.0),
@@ -357,6 +355,14 @@ fn a_pieces_rules_are_its_own() {
     ));
     sim.spawn(floor());
     sim.run(1);
+    (sim, bar)
+}
+
+/// The pieces' rules are their own: a new `PersonalRule` on one piece
+/// changes that piece alone, in its component and in the rule set.
+#[test]
+fn a_pieces_rules_are_its_own() {
+    let (mut sim, bar) = bar_over_floor();
     let pieces = split(&mut sim, bar, Split::Cut);
     sim.run(2);
     let (first, other) = (pieces[0], pieces[1]);
@@ -413,14 +419,7 @@ fn a_despawned_soft_body_leaves_no_rules_behind() {
 #[test]
 fn a_despawned_piece_leaves_no_rules_behind() {
     for how in [Split::Cut, Split::Tear] {
-        let mut sim = Sim::new();
-        let bar = sim.spawn((
-            Transform::from_xyz(0.0, 0.3, 0.0),
-            bar(),
-            PersonalRule(NoPair),
-        ));
-        sim.spawn(floor());
-        sim.run(1);
+        let (mut sim, bar) = bar_over_floor();
         let held = sim.rules().rules().nodes().count();
         let pieces = split(&mut sim, bar, how);
         sim.run(1);

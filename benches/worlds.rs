@@ -20,7 +20,13 @@
 //! - `churn`: worlds that change every step (shooters, a streamed level, a
 //!   car driven through a pickup field), and `rate`: balls fired and
 //!   removed at 0 to 200 a step over levels of two sizes
-//!   (`docs/performance.md`, "Worlds that change").
+//!   (`docs/performance.md`, "Worlds that change");
+//! - `ends`: 200 projectiles a second fired from inside ten turrets over
+//!   the level, each ignoring its turret until apart
+//!   (`Until::apart`), against the same world where the project removes
+//!   each rule itself once its own test says apart: both twins step
+//!   through `RuleHooks`, and each twin's time includes its own test
+//!   (`docs/performance.md`, "Rules with an end").
 //!
 //! Each variant steps two identical worlds in lockstep, one plain, one with
 //! the rules, and times them back to back (the paired ratio: median, min
@@ -51,7 +57,7 @@ use std::time::Duration;
 use common::{Churn, Twins, pile, specific_rules};
 use criterion::{BenchmarkId, Criterion, criterion_group};
 use plotters::prelude::*;
-use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks};
+use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks, Until};
 use rapier3d::prelude::*;
 
 const SIZES: [usize; 4] = [1_000, 4_000, 16_000, 64_000];
@@ -911,6 +917,20 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
         writeln!(csv, "{name},{n},{}", p.csv())?;
         rows.push((name, n, p));
     }
+    if selected("ends/projectiles") {
+        let p = ends_paired();
+        println!(
+            "  {:<22} {:>6}: {:.3} [{:.3}, {:.3}]  by hand {:>9.1} us  ending {:>9.1} us  (both twins through RuleHooks; ratio to the project ending each rule itself)",
+            "ends/projectiles",
+            400,
+            p.ratios[2],
+            p.ratios[0],
+            p.ratios[4],
+            p.plain * 1e6,
+            p.rules * 1e6,
+        );
+        writeln!(csv, "ends/projectiles,400,{}", p.csv())?;
+    }
     if let Ok(out) = std::env::var("WORLDS_OUT") {
         let dir = std::path::Path::new(&out);
         if rows.iter().any(|(name, _, _)| name.starts_with("level/")) {
@@ -924,6 +944,150 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     Ok(())
+}
+
+/// The `ends` scene's world: the level, and ten fixed turrets on it.
+fn turret_level() -> (PhysicsWorld, Vec<RigidBodyHandle>) {
+    let Scene { mut world, .. } = level(4_000, false);
+    let turrets = (0..10)
+        .map(|i| {
+            let at = Vector::new(i as f32 * 12.0 + 6.0, 1.0, 60.0);
+            let turret = world.insert_body(RigidBodyBuilder::fixed().translation(at));
+            world.insert_collider(ColliderBuilder::cuboid(0.5, 1.0, 0.5), Some(turret));
+            turret
+        })
+        .collect();
+    (world, turrets)
+}
+
+/// One twin of the `ends` scene: its world, its hooks, the turrets, the
+/// projectiles alive (with their turret), and whether the project ends
+/// each rule itself.
+struct Ends {
+    world: PhysicsWorld,
+    hooks: RuleHooks,
+    turrets: Vec<RigidBodyHandle>,
+    fired: VecDeque<(RigidBodyHandle, RigidBodyHandle)>,
+    step: u32,
+    by_hand: bool,
+}
+
+impl Ends {
+    fn new(by_hand: bool) -> Ends {
+        let (world, turrets) = turret_level();
+        Ends {
+            world,
+            hooks: RuleHooks::default(),
+            turrets,
+            fired: VecDeque::new(),
+            step: 0,
+            by_hand,
+        }
+    }
+
+    /// Fires this step's share of 200 a second (60 steps a second) from
+    /// inside the turrets in turn, removes projectiles two seconds old,
+    /// and, by hand, removes the rules whose sides are apart; then steps.
+    fn step(&mut self) {
+        let fire = (self.step + 1) * 200 / 60 - self.step * 200 / 60;
+        for k in 0..fire {
+            let n = self.step * 4 + k;
+            let turret = self.turrets[n as usize % self.turrets.len()];
+            let angle = n as f32 * 0.7;
+            let ball = self.world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .translation(self.world.bodies[turret].translation())
+                    .linvel(Vector::new(angle.cos(), 0.4, angle.sin()) * 20.0)
+                    .ccd_enabled(true),
+            );
+            self.world
+                .insert_collider(ColliderBuilder::ball(0.1), Some(ball));
+            let rules = self.hooks.rules_mut();
+            if self.by_hand {
+                rules.set_specific(ball, turret, CollisionRule::NoContacts);
+            } else {
+                rules.set_specific_until(ball, turret, CollisionRule::NoContacts, Until::apart());
+            }
+            self.fired.push_back((ball, turret));
+        }
+        while self.fired.len() > 400 {
+            let (old, _) = self.fired.pop_front().expect("a projectile");
+            self.world.remove_body(old);
+        }
+        if self.by_hand {
+            let mut due: Vec<_> = self
+                .fired
+                .iter()
+                .filter(|&&(ball, turret)| {
+                    self.hooks.rules().specific(ball, turret).is_decided()
+                        && self.apart(ball, turret)
+                })
+                .copied()
+                .collect();
+            due.sort_unstable_by_key(|&(ball, _)| ball.into_raw_parts());
+            for (ball, turret) in due {
+                self.hooks.rules_mut().remove_specific(ball, turret);
+            }
+        }
+        self.step += 1;
+        self.hooks.step(&mut self.world);
+    }
+
+    /// The project's own test: no box of one overlaps a box of the other.
+    fn apart(&self, a: RigidBodyHandle, b: RigidBodyHandle) -> bool {
+        use rapier3d::parry::bounding_volume::BoundingVolume;
+        let boxes = |body: RigidBodyHandle| {
+            self.world.bodies[body]
+                .colliders()
+                .iter()
+                .map(|&c| self.world.colliders[c].compute_aabb())
+                .collect::<Vec<_>>()
+        };
+        let (a, b) = (boxes(a), boxes(b));
+        !a.iter().any(|x| b.iter().any(|y| x.intersects(y)))
+    }
+}
+
+/// The `ends` scene: five paired runs of the twin whose rules end by
+/// themselves against the twin whose project ends them, after two seconds
+/// of firing (400 projectiles alive).
+fn ends_paired() -> Paired {
+    let mut twins = [Ends::new(false), Ends::new(true)];
+    for _ in 0..120 {
+        twins.iter_mut().for_each(Ends::step);
+    }
+    let mut runs = Vec::new();
+    for _ in 0..5 {
+        let mut took = [Duration::ZERO; 2];
+        let mut pairs = 0u32;
+        while pairs < 50 || took[0] + took[1] < Duration::from_millis(300) {
+            let order = if pairs % 2 == 0 { [0, 1] } else { [1, 0] };
+            for i in order {
+                let start = std::time::Instant::now();
+                twins[i].step();
+                took[i] += start.elapsed();
+            }
+            pairs += 1;
+        }
+        let [ends, by_hand] = took.map(|t| t.as_secs_f64() / f64::from(pairs));
+        runs.push((ends / by_hand, by_hand, ends));
+    }
+    let same = twins[0]
+        .world
+        .bodies
+        .iter()
+        .zip(twins[1].world.bodies.iter())
+        .all(|((_, a), (_, b))| a.position() == b.position());
+    assert!(
+        same,
+        "the twins of the ends scene differ: the rules did not end as the project ends them"
+    );
+    runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Paired {
+        ratios: runs.iter().map(|r| r.0).collect(),
+        plain: runs[2].1,
+        rules: runs[2].2,
+    }
 }
 
 /// Step time against world size: plain Rapier and `RuleHooks`, on the idle

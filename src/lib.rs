@@ -30,6 +30,7 @@ macro_rules! dimension {
         };
         pub use model::{
             CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable, Node, Problem, RuleError,
+            Until,
         };
         #[cfg(feature = "serde")]
         pub use model::{LoadError, SavedRuleSet};
@@ -50,3 +51,9 @@ pub mod dim2;
 
 #[cfg(feature = "dim3")]
 pub use dim3::*;
+
+/// `docs/semantics.md`, whose Rust snippets `cargo test --doc` compiles and
+/// runs as this crate's doc tests: the worked examples are a user's code.
+#[doc = include_str!("../docs/semantics.md")]
+#[cfg(all(doctest, feature = "dim3"))]
+pub struct SemanticsGuide;

@@ -221,6 +221,7 @@ impl RuleHooks {
         rule: CollisionRule,
     ) -> bool {
         let known = self.rapier_state(world.into(), a, b);
+        self.pair_ends.remove(&PairKey::new(a, b));
         self.override_pair(a, b, known, rule)
     }
 

@@ -1,8 +1,9 @@
 //! **Step**: the rules inside Rapier's step.
 //!
 //! [`RuleHooks`] is a drop-in [`PhysicsHooks`]. Around each of Rapier's
-//! steps ([`step`]) it runs the phases before ([`prepare`]: what changed,
-//! through the [`roster`] of what the rules reach; the plan written into
+//! steps ([`step`]) it runs the phases before ([`prepare`]: the rules
+//! whose end came removed by [`expiry`]; what changed, through the
+//! [`roster`] of what the rules reach; the plan written into
 //! the colliders by [`writer`]; live pairs recalculated by [`recalculate`];
 //! the [`witness`] of a step taken without the hooks) and after ([`sweep`]:
 //! the pairs Rapier made and ended; [`soft_bodies`]: what a soft body is to
@@ -17,6 +18,7 @@
 //! Rapier.
 
 mod answer;
+mod expiry;
 mod live;
 mod pair_state;
 mod prepare;
@@ -148,6 +150,9 @@ pub struct RuleHooks {
     stats: StepStats,
     /// What the hooks follow of the world's soft bodies.
     soft: soft_bodies::SoftBodies,
+    /// The ends of pair overrides given one (see
+    /// [`RuleHooks::set_pair_rule_until`]).
+    pair_ends: HashMap<PairKey, super::Until>,
 }
 
 /// What decides each pair: the rules, the policy, the code a project
@@ -183,6 +188,8 @@ struct Boundary {
     witness: Option<(PairKey, CollisionRule)>,
     /// Whether stepping without the hooks was reported (once).
     reported_unhooked: bool,
+    /// How long a step is, for rules given for a time.
+    dt: Real,
 }
 
 /// The work queued for the next step.
@@ -273,6 +280,7 @@ impl RuleHooks {
                 census: Census::default(),
                 witness: None,
                 reported_unhooked: false,
+                dt: IntegrationParameters::default().dt,
             },
             queued: Queued {
                 forced: Vec::new(),
@@ -296,6 +304,7 @@ impl RuleHooks {
             },
             stats: StepStats::default(),
             soft: soft_bodies::SoftBodies::default(),
+            pair_ends: HashMap::new(),
         }
     }
 

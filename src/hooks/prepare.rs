@@ -102,6 +102,7 @@ impl RuleHooks {
     ) {
         self.open_step();
         self.settle_pieces(colliders);
+        self.end_rules(bodies, colliders);
         let full = self.full_pass();
         if self.planned.exhaustive {
             self.queued.replan.get_or_insert(PlanCause::HookSettings);
@@ -382,6 +383,7 @@ impl RuleHooks {
             && !self.queued.recalculate_all
             && self.decide.policy != RecalculationPolicy::EveryStep
             && self.full_pass().is_none()
+            && !self.has_ends()
     }
 
     /// Why every collider must be looked at and hooked, if it must.

@@ -109,6 +109,7 @@ impl RuleHooks {
         events: &dyn EventHandler,
     ) {
         self.follow_soft_bodies(soft_bodies, bodies);
+        self.boundary.dt = integration_parameters.dt;
         let idle = self.idle(colliders);
         if idle {
             self.count_idle_step();

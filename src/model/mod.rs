@@ -22,6 +22,7 @@
 
 pub(crate) mod body_kinds;
 pub(crate) mod changes;
+pub(crate) mod ending;
 pub(crate) mod error;
 pub(crate) mod group;
 pub(crate) mod group_table;
@@ -41,6 +42,7 @@ pub(crate) mod rule_set;
 pub(crate) mod snapshot;
 pub(crate) mod tombstones;
 
+pub use ending::Until;
 pub use error::RuleError;
 pub use group::CollisionGroup;
 pub use group_table::GroupTable;
@@ -50,6 +52,7 @@ pub use rule::CollisionRule;
 pub use rule_set::CollisionRuleSet;
 #[cfg(feature = "serde")]
 pub use snapshot::{LoadError, SavedRuleSet};
+pub(crate) use ending::Due;
 pub(crate) use body_kinds::{BodyKinds, dynamic_body, is_dynamic, soft_rigid};
 pub(crate) use pieces::Heir;
 pub(crate) use node::HandleMap;

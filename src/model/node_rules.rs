@@ -91,6 +91,7 @@ impl CollisionRuleSet {
         rule: CollisionRule,
     ) {
         let (node, other) = (node.into(), other.into());
+        self.forget_ending(node, other);
         if rule == CollisionRule::Defer {
             self.remove_specific(node, other);
         } else if !self.is_removed(other) {
@@ -127,6 +128,7 @@ impl CollisionRuleSet {
     /// Removes what `node` says about `other`.
     pub fn remove_specific(&mut self, node: impl Into<Node>, other: impl Into<Node>) {
         let (node, other) = (node.into(), other.into());
+        self.forget_ending(node, other);
         if let Some(id) = self.record_id(node) {
             if self.records.get_mut(id).specific.remove(&other).is_some() {
                 self.unname(other);

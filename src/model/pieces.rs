@@ -41,7 +41,7 @@ impl CollisionRuleSet {
                 self.set_group(to, record.group);
                 self.set_personal(to, record.personal);
                 for (other, rule) in record.specific {
-                    self.set_specific(to, other, rule);
+                    self.set_specific_keeping_end(to, other, rule, (from, other));
                 }
                 given = true;
             }
@@ -54,7 +54,7 @@ impl CollisionRuleSet {
         if self.is_named(from) {
             let holders: Vec<(Node, CollisionRule)> = self.entries_about(from).collect();
             for (holder, rule) in holders {
-                self.set_specific(holder, to, rule);
+                self.set_specific_keeping_end(holder, to, rule, (holder, from));
             }
             given = true;
         }
@@ -62,5 +62,14 @@ impl CollisionRuleSet {
             given |= self.set_parent(piece, parent).is_ok();
         }
         given
+    }
+
+    /// `set_specific`, with the end the entry `like` has, if any: a piece's
+    /// copy of a rule with an end ends on its own, when the piece is apart.
+    fn set_specific_keeping_end(&mut self, node: Node, other: Node, rule: CollisionRule, like: (Node, Node)) {
+        match self.specific_until(like.0, like.1) {
+            Some(until) => self.set_specific_until(node, other, rule, until),
+            None => self.set_specific(node, other, rule),
+        }
     }
 }

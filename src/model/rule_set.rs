@@ -6,6 +6,7 @@ use hashbrown::HashMap;
 use super::super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
 
 use super::changes::Changes;
+use super::ending::Endings;
 use super::group_table::GroupTable;
 use super::hierarchy::Hierarchy;
 use super::node::HandleMap;
@@ -59,6 +60,8 @@ pub struct CollisionRuleSet {
     pub(super) named: HashMap<Node, u32>,
     /// The handles forgotten as removed: every editing verb refuses them.
     pub(super) removed: Tombstones,
+    /// The ends of the specific entries given one (see [`Until`]).
+    pub(super) endings: Endings,
 }
 
 impl Default for CollisionRuleSet {
@@ -73,6 +76,7 @@ impl Default for CollisionRuleSet {
             changes: Changes::default(),
             named: HashMap::new(),
             removed: Tombstones::default(),
+            endings: Endings::default(),
         }
     }
 }

@@ -6,7 +6,7 @@
 use super::super::rapier::prelude::RigidBodyHandle;
 use serde::{Deserialize, Serialize};
 
-use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, RuleError};
+use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, RuleError, Until};
 
 /// Why a saved rule set was refused: what no rule set of this crate holds,
 /// so what only a damaged or hand-edited save can say. A refused load builds
@@ -40,6 +40,15 @@ pub enum LoadError {
     TwoParents {
         /// The body.
         child: RigidBodyHandle,
+    },
+    /// The end of an entry with a negative or not-a-number margin or time:
+    /// `Until` refuses them when built.
+    #[error("saved end of the entry of {node:?} about {other:?} has a negative or NaN margin or time")]
+    BadEnd {
+        /// The node holding the entry.
+        node: Node,
+        /// The node the entry is about.
+        other: Node,
     },
     /// The parent map refused a saved link (a cycle, a body as its own
     /// parent).
@@ -84,6 +93,10 @@ pub struct SavedRuleSet {
     group_rules: Vec<(CollisionGroup, CollisionGroup, CollisionRule)>,
     records: Vec<SavedRecord>,
     parents: Vec<(RigidBodyHandle, RigidBodyHandle)>,
+    /// The ends of entries given one, with what is left of each (absent
+    /// from saves made before rules had ends).
+    #[serde(default)]
+    endings: Vec<(Node, Node, Until)>,
 }
 
 impl From<CollisionRuleSet> for SavedRuleSet {
@@ -114,12 +127,15 @@ impl From<CollisionRuleSet> for SavedRuleSet {
         group_rules.sort();
         let mut parents: Vec<_> = rules.parents().collect();
         parents.sort_by_key(|(c, _)| c.into_raw_parts());
+        let mut endings: Vec<_> = rules.endings.iter().map(|(&(n, o), &u)| (n, o, u)).collect();
+        endings.sort_by_key(|&(n, o, _)| (n, o));
         SavedRuleSet {
             default_rule: rules.default_rule(),
             group_count: rules.group_count(),
             group_rules,
             records: records.into_iter().map(|(_, r)| r).collect(),
             parents,
+            endings,
         }
     }
 }
@@ -157,6 +173,9 @@ impl SavedRuleSet {
                     return Err(LoadError::SharedTwice { node: user });
                 }
             }
+        }
+        if let Some(&(node, other, _)) = self.endings.iter().find(|(_, _, until)| !until.is_valid()) {
+            return Err(LoadError::BadEnd { node, other });
         }
         let mut children = hashbrown::HashSet::new();
         for &(child, _) in &self.parents {
@@ -198,6 +217,12 @@ impl TryFrom<SavedRuleSet> for CollisionRuleSet {
                 // about such objects are.
                 Ok(()) | Err(RuleError::Removed { .. }) => {}
                 Err(e) => return Err(LoadError::ParentMap(e)),
+            }
+        }
+        for (node, other, until) in saved.endings {
+            // An end of an entry the save does not hold ends nothing.
+            if rules.specific(node, other).is_decided() {
+                rules.endings.insert((node, other), until);
             }
         }
         // Put in place of a rule set the hooks hold (`*hooks.rules_mut() =

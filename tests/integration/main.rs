@@ -14,6 +14,8 @@ macro_rules! dimension_free_tests {
         mod boundary;
         #[path = "driver.rs"]
         pub mod driver;
+        #[path = "endings.rs"]
+        mod endings;
         #[path = "errors.rs"]
         mod errors;
         #[path = "hierarchy.rs"]

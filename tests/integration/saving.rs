@@ -4,7 +4,7 @@
 
 use crate::dim3::world::numeric_leaves;
 use rapier_collision_rules::{
-    CollisionGroup, CollisionRule, CollisionRuleSet, RuleError, RuleHooks,
+    CollisionGroup, CollisionRule, CollisionRuleSet, RuleError, RuleHooks, Until,
 };
 use rapier3d::prelude::*;
 
@@ -139,6 +139,83 @@ fn a_world_saved_with_its_rules_resolves_and_steps_as_before()
 }
 
 /// The saved form of a rule set of every kind, as JSON.
+#[test]
+fn rules_with_an_end_are_saved_with_what_is_left_and_end_after_loading_as_they_would_have()
+-> Result<(), Box<dyn std::error::Error>> {
+    // A cube resting on the ground, given ten steps of falling through;
+    // saved after four, loaded, and stepped beside the world not saved.
+    let mut world = PhysicsWorld::new();
+    let ground = world.insert_body(RigidBodyBuilder::fixed());
+    world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+    let cube =
+        world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 1.0, 0.0)));
+    world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(cube));
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_specific_until(
+        cube,
+        ground,
+        NoContacts,
+        Until::steps(10).even_if_overlapping(),
+    );
+    hooks
+        .rules_mut()
+        .set_specific_until(ground, cube, NoResponse, Until::apart().margin(0.5));
+    for _ in 0..4 {
+        hooks.step(&mut world);
+    }
+    hooks.restore_project_settings(&mut world.colliders);
+    let saved = serde_json::to_string(&(&world, hooks.rules()))?;
+    let (mut loaded_world, loaded_rules): (PhysicsWorld, CollisionRuleSet) =
+        serde_json::from_str(&saved)?;
+    assert_eq!(
+        loaded_rules.specific_until(cube, ground),
+        Some(Until::steps(6).even_if_overlapping())
+    );
+    assert_eq!(
+        loaded_rules.specific_until(ground, cube),
+        Some(Until::apart().margin(0.5))
+    );
+    let mut loaded = RuleHooks::new(loaded_rules);
+    for step in 0..30 {
+        hooks.step(&mut world);
+        loaded.step(&mut loaded_world);
+        for (node, other) in [(cube, ground), (ground, cube)] {
+            assert_eq!(
+                loaded.rules().specific(node, other),
+                hooks.rules().specific(node, other),
+                "step {step}: the loaded entry ends as the one not saved"
+            );
+        }
+        assert_eq!(
+            loaded_world.bodies[cube].translation(),
+            world.bodies[cube].translation(),
+            "step {step}: the loaded world steps as the one not saved"
+        );
+    }
+    assert_eq!(
+        hooks.rules().specific(cube, ground),
+        CollisionRule::Defer,
+        "ten steps ran out"
+    );
+    // A save made before ends existed has no `endings`: it loads with none.
+    let mut old: serde_json::Value = serde_json::to_value(hooks.rules())?;
+    let mut damaged = old.clone();
+    old.as_object_mut().expect("a map").remove("endings");
+    let _: CollisionRuleSet = serde_json::from_value(old)?;
+    // A damaged end is refused, naming the entry.
+    damaged["endings"] = serde_json::json!([[{"Body": damaged["records"][0]["users"][0]["Body"]}, {"Body": damaged["records"][0]["users"][0]["Body"]}, {"count": "Apart", "margin": -1.0, "wait_apart": true}]]);
+    let error = serde_json::from_value::<CollisionRuleSet>(damaged)
+        .err()
+        .map(|e| e.to_string());
+    assert!(
+        error
+            .as_deref()
+            .is_some_and(|e| e.contains("negative or NaN margin")),
+        "{error:?}"
+    );
+    Ok(())
+}
+
 fn saved_value() -> serde_json::Value {
     let (_, rules) = world_with_every_rule().expect("the scene builds");
     serde_json::to_value(&rules).expect("a rule set saves")

@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use super::rapier::prelude::*;
-use super::rules::{CollisionGroup, CollisionRule, Node, RuleHooks, Stage};
+use super::rules::{CollisionGroup, CollisionRule, Node, RuleHooks, Stage, Until};
 use super::{at, blade_at_x, cube, pose_bits, slab, soft_bar, soft_piece};
 
 #[derive(Clone, Debug)]
@@ -13,6 +13,8 @@ pub enum Edit {
     Personal(usize, CollisionRule),
     Group(usize, Option<usize>),
     Specific(usize, usize, CollisionRule),
+    /// `set_specific_until` with an end from [`ENDS`] (an index).
+    SpecificUntil(usize, usize, CollisionRule, usize),
     GroupRule(usize, usize, CollisionRule),
     Parent(usize, usize),
     Unparent(usize),
@@ -115,6 +117,20 @@ pub const KINDS: [RigidBodyType; 3] = [
     RigidBodyType::Fixed,
 ];
 pub const GROUPS: usize = 4;
+
+/// The ends a rule may be given: apart (with and without a margin), a
+/// count that is due at once, counts and a time that wait for apart, and a
+/// count that ends even inside an overlap.
+pub fn ends() -> [Until; 6] {
+    [
+        Until::apart(),
+        Until::apart().margin(0.1),
+        Until::steps(0),
+        Until::steps(3),
+        Until::seconds(0.05),
+        Until::steps(2).even_if_overlapping(),
+    ]
+}
 
 /// A handle's raw parts, to sort and compare pairs.
 pub type Raw = (u32, u32);
@@ -394,6 +410,11 @@ impl Run {
             Edit::Specific(x, y, r) => {
                 let (node, other) = (self.node(x), self.node(y));
                 self.hooks.rules_mut().set_specific(node, other, r);
+            }
+            Edit::SpecificUntil(x, y, r, u) => {
+                let (node, other) = (self.node(x), self.node(y));
+                let until = ends()[u % ends().len()];
+                self.hooks.rules_mut().set_specific_until(node, other, r, until);
             }
             Edit::GroupRule(a, b, r) => self
                 .hooks

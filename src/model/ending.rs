@@ -1,0 +1,350 @@
+//! Rules with an end (`docs/semantics.md`, "Rules with an end"): a
+//! specific entry given [`Until`] the two sides are apart, for a number of
+//! steps, or for a simulated time. The rule set keeps each entry's end
+//! beside the entry; the hooks count it down and remove the entry when it
+//! comes (they can see the world, the rule set cannot).
+
+use hashbrown::HashMap;
+
+use super::super::rapier::prelude::Real;
+
+use super::super::{CollisionRule, CollisionRuleSet, Node};
+
+/// When a rule with an end ends: given to
+/// [`CollisionRuleSet::set_specific_until`] or
+/// [`RuleHooks::set_pair_rule_until`](super::super::RuleHooks::set_pair_rule_until).
+///
+/// Two sides are *apart* when no collider of one overlaps any collider of
+/// the other by their bounding boxes, nor comes closer than the margin (0
+/// unless [`margin`](Self::margin) says otherwise), before a step. A rule given for a number of
+/// steps or a time that comes due while the two still overlap holds until
+/// they are apart, so that a pair never starts responding deep inside
+/// itself ([`even_if_overlapping`](Self::even_if_overlapping) ends it at
+/// once instead).
+///
+/// ```
+/// use rapier3d::prelude::*;
+/// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, Until};
+///
+/// let mut bodies = RigidBodySet::new();
+/// let shooter = bodies.insert(RigidBodyBuilder::dynamic());
+/// let bullet = bodies.insert(RigidBodyBuilder::dynamic());
+/// let mut rules = CollisionRuleSet::default();
+/// rules.set_specific_until(bullet, shooter, CollisionRule::NoContacts, Until::apart().margin(0.05));
+/// assert_eq!(rules.specific(bullet, shooter), CollisionRule::NoContacts);
+/// assert_eq!(rules.specific_until(bullet, shooter), Some(Until::apart().margin(0.05)));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Until {
+    count: Count,
+    margin: Real,
+    /// A due count waits for the sides to be apart.
+    wait_apart: bool,
+}
+
+/// What an end counts, and what is left of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+enum Count {
+    Apart,
+    Steps(u32),
+    Seconds(Real),
+}
+
+/// Where an end stands after one more step was counted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Due {
+    /// The count runs.
+    Not,
+    /// The rule ends now if the sides are apart, and holds otherwise.
+    IfApart,
+    /// The rule ends now.
+    Now,
+}
+
+impl Until {
+    /// Until the two sides are apart.
+    #[must_use]
+    pub fn apart() -> Until {
+        Until {
+            count: Count::Apart,
+            margin: 0.0,
+            wait_apart: true,
+        }
+    }
+
+    /// For `steps` steps of the hooks (`steps(1)`: the next step only),
+    /// then until the sides are apart.
+    #[must_use]
+    pub fn steps(steps: u32) -> Until {
+        Until {
+            count: Count::Steps(steps),
+            ..Until::apart()
+        }
+    }
+
+    /// For `seconds` of simulated time (counted in whole steps, the nearest
+    /// number of the world's `dt`), then until the sides are apart.
+    ///
+    /// # Panics
+    ///
+    /// If `seconds` is negative or not a number.
+    #[must_use]
+    #[track_caller]
+    pub fn seconds(seconds: Real) -> Until {
+        assert!(
+            seconds >= 0.0,
+            "Until::seconds({seconds}): a time to hold a rule must be zero or more seconds"
+        );
+        Until {
+            count: Count::Seconds(seconds),
+            ..Until::apart()
+        }
+    }
+
+    /// How far apart the sides' bounding boxes must be for the sides to
+    /// be apart.
+    ///
+    /// # Panics
+    ///
+    /// If `margin` is negative or not a number.
+    #[must_use]
+    #[track_caller]
+    pub fn margin(self, margin: Real) -> Until {
+        assert!(
+            margin >= 0.0,
+            "Until::margin({margin}): the margin must be zero or more (a distance)"
+        );
+        Until { margin, ..self }
+    }
+
+    /// A rule given for steps or a time ends when they run out, even if the
+    /// sides still overlap then (they are pushed apart as Rapier pushes any
+    /// overlap, at up to its `max_corrective_velocity`: `docs/stability.md`).
+    ///
+    /// # Panics
+    ///
+    /// On [`Until::apart`], which has no count to run out.
+    #[must_use]
+    #[track_caller]
+    pub fn even_if_overlapping(self) -> Until {
+        assert!(
+            self.count != Count::Apart,
+            "Until::apart().even_if_overlapping(): an end at apart has nothing else to wait for; \
+             use Until::steps or Until::seconds"
+        );
+        Until {
+            wait_apart: false,
+            ..self
+        }
+    }
+
+    /// The margin of the test for apart.
+    #[must_use]
+    pub fn margin_of_apart(&self) -> Real {
+        self.margin
+    }
+
+    /// The steps left, for a rule given for a number of steps.
+    #[must_use]
+    pub fn steps_left(&self) -> Option<u32> {
+        match self.count {
+            Count::Steps(left) => Some(left),
+            _ => None,
+        }
+    }
+
+    /// The simulated time left, for a rule given for a time.
+    #[must_use]
+    pub fn seconds_left(&self) -> Option<Real> {
+        match self.count {
+            Count::Seconds(left) => Some(left.max(0.0)),
+            _ => None,
+        }
+    }
+
+    /// What the constructors and the count let through: a margin of zero
+    /// or more, a time left that is a number (the count may leave it a
+    /// little below zero). A save may hold anything.
+    #[cfg(feature = "serde")]
+    pub(crate) fn is_valid(&self) -> bool {
+        let time = match self.count {
+            Count::Seconds(left) => !left.is_nan(),
+            _ => true,
+        };
+        self.margin >= 0.0 && time
+    }
+
+    /// Counts the step about to be taken, `dt` long: whether the rule ends
+    /// before it. A count that is due stays due.
+    pub(crate) fn count_step(&mut self, dt: Real) -> Due {
+        let due = match &mut self.count {
+            Count::Apart => true,
+            Count::Steps(0) => true,
+            Count::Steps(left) => {
+                *left -= 1;
+                false
+            }
+            // The nearest whole number of steps: half a step left is none.
+            Count::Seconds(left) if *left < dt * 0.5 => true,
+            Count::Seconds(left) => {
+                *left -= dt;
+                false
+            }
+        };
+        match (due, self.wait_apart) {
+            (false, _) => Due::Not,
+            (true, true) => Due::IfApart,
+            (true, false) => Due::Now,
+        }
+    }
+}
+
+/// The ends of the specific entries that have one, keyed by the entry's
+/// two nodes as given: the sides tested for apart.
+pub(crate) type Endings = HashMap<(Node, Node), Until>;
+
+/// Rules with an end.
+impl CollisionRuleSet {
+    /// What `node` says about `other` (as
+    /// [`set_specific`](Self::set_specific)) until `until` comes: then the
+    /// entry is removed by the hooks before the next step, and the pair
+    /// falls back to the other stages. `Defer` removes the entry. A later
+    /// `set_specific` of the same entry makes it timeless again.
+    ///
+    /// The sides tested for apart are `node` and `other` with every
+    /// collider under them. Under [`RecalculationPolicy::Manual`](super::super::RecalculationPolicy::Manual),
+    /// a live pair keeps its rule after the end until it ends or is
+    /// recalculated, as after any edit.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks, Until};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let shooter = world.insert_body(RigidBodyBuilder::dynamic().gravity_scale(0.0));
+    /// world.insert_collider(ColliderBuilder::cuboid(0.5, 1.0, 0.5), Some(shooter));
+    /// // Spawned inside its shooter, flying out to the right.
+    /// let bullet = world.insert_body(
+    ///     RigidBodyBuilder::dynamic().gravity_scale(0.0).linvel(Vector::new(5.0, 0.0, 0.0)),
+    /// );
+    /// world.insert_collider(ColliderBuilder::ball(0.1), Some(bullet));
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific_until(bullet, shooter, CollisionRule::NoContacts, Until::apart());
+    /// hooks.step(&mut world);
+    /// assert_eq!(hooks.rules().specific(bullet, shooter), CollisionRule::NoContacts, "still inside");
+    /// for _ in 0..30 {
+    ///     hooks.step(&mut world);
+    /// }
+    /// assert_eq!(hooks.rules().specific(bullet, shooter), CollisionRule::Defer, "out: the rule ended");
+    /// assert!(world.bodies[shooter].linvel().length() < 1e-6, "the shooter was never pushed");
+    /// ```
+    pub fn set_specific_until(
+        &mut self,
+        node: impl Into<Node>,
+        other: impl Into<Node>,
+        rule: CollisionRule,
+        until: Until,
+    ) {
+        let (node, other) = (node.into(), other.into());
+        self.set_specific(node, other, rule);
+        if self.specific(node, other) != CollisionRule::Defer {
+            self.endings.insert((node, other), until);
+        }
+    }
+
+    /// The end of what `node` says about `other`, `None` if the entry is
+    /// timeless or there is none. Counts down as the hooks step.
+    #[must_use]
+    pub fn specific_until(&self, node: impl Into<Node>, other: impl Into<Node>) -> Option<Until> {
+        let (node, other) = (node.into(), other.into());
+        if self.specific(node, other) == CollisionRule::Defer {
+            return None;
+        }
+        self.endings.get(&(node, other)).copied().or_else(|| {
+            // The entry may have been given its end through a node that
+            // shares `node`'s record.
+            let record = self.record_id(node);
+            self.endings
+                .iter()
+                .find(|((n, o), _)| *o == other && self.record_id(*n) == record)
+                .map(|(_, until)| *until)
+        })
+    }
+
+    /// Forgets the end of the entry of `node`'s record about `other`, given
+    /// through `node` or any node sharing its record: the entry changed.
+    pub(super) fn forget_ending(&mut self, node: Node, other: Node) {
+        if self.endings.is_empty() {
+            return;
+        }
+        match self.record_id(node) {
+            Some(record) => {
+                let ids: Vec<(Node, Node)> = self
+                    .endings
+                    .keys()
+                    .filter(|(n, o)| *o == other && (*n == node || self.record_id(*n) == Some(record)))
+                    .copied()
+                    .collect();
+                for key in ids {
+                    self.endings.remove(&key);
+                }
+            }
+            None => {
+                self.endings.remove(&(node, other));
+            }
+        }
+    }
+
+    /// The entries with an end, with their ends, in no particular order.
+    pub(crate) fn endings_mut(&mut self) -> &mut Endings {
+        &mut self.endings
+    }
+
+    /// Whether any entry has an end.
+    pub(crate) fn has_endings(&self) -> bool {
+        !self.endings.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Due, Until};
+
+    #[test]
+    fn steps_hold_for_exactly_their_count() {
+        let mut until = Until::steps(2);
+        assert_eq!(until.count_step(0.1), Due::Not);
+        assert_eq!(until.count_step(0.1), Due::Not);
+        assert_eq!(until.count_step(0.1), Due::IfApart);
+        assert_eq!(until.count_step(0.1), Due::IfApart, "a due count stays due");
+    }
+
+    #[test]
+    fn seconds_round_to_the_nearest_step() {
+        let dt = 1.0 / 60.0;
+        for (seconds, steps) in [(0.5, 30), (0.51, 31), (0.505, 30), (0.0, 0), (0.01, 1)] {
+            let mut until = Until::seconds(seconds).even_if_overlapping();
+            let held = (0..100).take_while(|_| until.count_step(dt) == Due::Not).count();
+            assert_eq!(held, steps, "Until::seconds({seconds}) at 60 Hz held {held} steps");
+        }
+    }
+
+    #[test]
+    fn apart_is_due_at_once() {
+        assert_eq!(Until::apart().count_step(0.1), Due::IfApart);
+    }
+
+    #[test]
+    #[should_panic(expected = "must be zero or more")]
+    fn a_negative_time_is_refused() {
+        let _ = Until::seconds(-1.0);
+    }
+
+    #[test]
+    #[should_panic(expected = "nothing else to wait for")]
+    fn apart_cannot_end_while_overlapping() {
+        let _ = Until::apart().even_if_overlapping();
+    }
+}

@@ -60,7 +60,7 @@ pub struct CollisionRuleSet {
     pub(super) named: HashMap<Node, u32>,
     /// The handles forgotten as removed: every editing verb refuses them.
     pub(super) removed: Tombstones,
-    /// The ends of the specific entries given one (see [`Until`]).
+    /// The ends of the specific entries given one (see [`Until`](super::super::Until)).
     pub(super) endings: Endings,
 }
 

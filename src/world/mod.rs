@@ -2,7 +2,7 @@
 //! graphs ([`graph`]), the body types of a pair ([`kinds`]), the shapes that
 //! are made of parts ([`shapes`]), and each collider's settings as the
 //! project set them and as the crate wrote them ([`settings`]), and
-//! whether two sides of a rule with an end are [`apart`].
+//! whether two sides of a rule with an end are [`apart`](mod@apart).
 //!
 //! The [`planner`](super::planner) and the [`hooks`](super::hooks) stand on
 //! it; it knows nothing of rules.

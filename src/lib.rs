@@ -26,7 +26,7 @@ macro_rules! dimension {
 
         pub use hooks::{
             CalculatorContext, FullPass, ManifoldUpdate, PairCreated, PlanCause,
-            RecalculationPolicy, RuleHooks, StepStats, WorldRef,
+            RecalculationPolicy, RuleChange, RuleEvent, RuleHooks, StepStats, WorldRef,
         };
         pub use model::{
             CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable, Node, Problem, RuleError,

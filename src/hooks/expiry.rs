@@ -116,6 +116,9 @@ impl RuleHooks {
             };
             if ends {
                 rules.remove_specific(node, other);
+                if let Some(recording) = &mut self.recording {
+                    recording.expired.push((node, other));
+                }
             }
         }
         let mut pairs: Vec<PairKey> = self.pair_ends.keys().copied().collect();
@@ -135,6 +138,9 @@ impl RuleHooks {
             };
             if ends {
                 self.pair_ends.remove(&key);
+                if let Some(recording) = &mut self.recording {
+                    recording.expired_pairs.insert(key);
+                }
                 // Straight to the state: a `NoPair` override is no live
                 // pair to `set_pair_rule`, but Rapier still holds the pair.
                 if let Some(state) = self.pairs.get_mut(key) {

@@ -35,8 +35,8 @@ struct Native {
 #[derive(Clone, Copy)]
 pub struct WorldRef<'a> {
     narrow_phase: &'a NarrowPhase,
-    bodies: &'a RigidBodySet,
-    colliders: &'a ColliderSet,
+    pub(super) bodies: &'a RigidBodySet,
+    pub(super) colliders: &'a ColliderSet,
     joints: Option<Joints<'a>>,
 }
 
@@ -166,6 +166,18 @@ impl RuleHooks {
         world: W,
     ) -> impl Iterator<Item = (ColliderHandle, ColliderHandle, CollisionRule)> + use<'a, W> {
         let world = world.into();
+        self.held_pairs(world).filter_map(move |(a, b)| {
+            let rule = self.held_rule(world, a, b, || self.resolve(world.bodies, world.colliders, a, b));
+            (rule != CollisionRule::NoPair).then_some((a, b, rule))
+        })
+    }
+
+    /// The pairs Rapier holds now that its filters let through, in its
+    /// graph's order: contact pairs, then sensor pairs.
+    pub(super) fn held_pairs<'a>(
+        &self,
+        world: WorldRef<'a>,
+    ) -> impl Iterator<Item = (ColliderHandle, ColliderHandle)> + use<'a> {
         let contacts = world
             .narrow_phase
             .contact_pairs()
@@ -174,17 +186,26 @@ impl RuleHooks {
             .narrow_phase
             .intersection_pairs()
             .map(|(a, b, _)| (a, b));
-        contacts.chain(sensors).filter_map(move |(a, b)| {
-            if !filters_pass(world.bodies, world.colliders, world.joints, a, b) {
-                return None;
-            }
-            let rule = match self.pairs.get(PairKey::new(a, b)) {
-                // Rapier holds it: a pair kept through regrouping is back.
-                Some(state) => self.rule_now(state, world.bodies, world.colliders, a, b),
-                None => self.resolve(world.bodies, world.colliders, a, b),
-            };
-            (rule != CollisionRule::NoPair).then_some((a, b, rule))
-        })
+        contacts
+            .chain(sensors)
+            .filter(move |&(a, b)| filters_pass(world.bodies, world.colliders, world.joints, a, b))
+    }
+
+    /// The rule of a pair Rapier holds: the hooks' for a hooked pair,
+    /// `unhooked` for the others (the default calculation, which equals what
+    /// Rapier's groups do with them).
+    pub(super) fn held_rule(
+        &self,
+        world: WorldRef<'_>,
+        a: ColliderHandle,
+        b: ColliderHandle,
+        unhooked: impl FnOnce() -> CollisionRule,
+    ) -> CollisionRule {
+        match self.pairs.get(PairKey::new(a, b)) {
+            // Rapier holds it: a pair kept through regrouping is back.
+            Some(state) => self.rule_now(state, world.bodies, world.colliders, a, b),
+            None => unhooked(),
+        }
     }
 
     /// Replaces the rule of the live pair of `a` and `b` for the rest of the
@@ -252,9 +273,13 @@ impl RuleHooks {
         native: Option<Native>,
         rule: CollisionRule,
     ) -> bool {
-        self.edit_pair(a, b, native, |state| {
+        let edited = self.edit_pair(a, b, native, |state| {
             state.overridden = rule.is_decided().then_some(rule);
-        })
+        });
+        if let Some(recording) = self.recording.as_mut().filter(|_| edited) {
+            recording.overridden.insert(PairKey::new(a, b));
+        }
+        edited
     }
 
     /// Sets how the live pair of `a` and `b` updates its contacts; any
@@ -323,6 +348,9 @@ impl RuleHooks {
     /// its descendants (the design's `ForceCollisionRuleRecalculation`),
     /// dropping their overrides. A pair that becomes `NoPair` stops being live.
     pub fn force_recalculation(&mut self, node: impl Into<Node>) {
+        if let Some(recording) = &mut self.recording {
+            recording.forced = true;
+        }
         self.queued.forced.push(node.into());
     }
 

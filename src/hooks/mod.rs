@@ -10,8 +10,9 @@
 //! the rules, and the pieces of cuts and tears). During the step Rapier asks it about
 //! the pairs of hooked colliders ([`answer`]), which it answers from the
 //! table of live pairs ([`pair_state`]). [`live`] is the live-pair API,
-//! answered on demand from Rapier's graph; [`stats`] says what the last
-//! step did.
+//! answered on demand from Rapier's graph; [`rule_events`] reports what
+//! changed for live pairs to a game that asks; [`stats`] says what the
+//! last step did.
 //!
 //! It stands on the [`planner`](super::planner), which decides what Rapier
 //! can test itself, and on [`world`](super::world), which reads and writes
@@ -24,6 +25,7 @@ mod pair_state;
 mod prepare;
 mod recalculate;
 mod roster;
+mod rule_events;
 mod soft_bodies;
 mod stats;
 mod step;
@@ -47,6 +49,7 @@ pub(crate) use pair_state::{PairState, PairTable};
 pub(crate) use super::world::PairKey;
 pub use stats::{FullPass, PlanCause, StepStats};
 pub use live::WorldRef;
+pub use rule_events::{RuleChange, RuleEvent};
 use roster::Roster;
 
 /// When live pairs are recalculated after the rules change.
@@ -153,6 +156,9 @@ pub struct RuleHooks {
     /// The ends of pair overrides given one (see
     /// [`RuleHooks::set_pair_rule_until`]).
     pair_ends: HashMap<PairKey, super::Until>,
+    /// The rule events, while a game asks for them (see
+    /// [`RuleHooks::record_rule_events`]).
+    recording: Option<Box<rule_events::Recording>>,
 }
 
 /// What decides each pair: the rules, the policy, the code a project
@@ -305,6 +311,7 @@ impl RuleHooks {
             stats: StepStats::default(),
             soft: soft_bodies::SoftBodies::default(),
             pair_ends: HashMap::new(),
+            recording: None,
         }
     }
 

@@ -113,8 +113,14 @@ impl RuleHooks {
         if full != self.planned.plan.full && (full.is_some() || self.planned.plan.full.is_some()) {
             self.queued.replan.get_or_insert(PlanCause::HookSettings);
         }
+        if self.decide.rules.has_changes() || self.queued.replan.is_some() {
+            self.note_edit();
+        }
         let mut changed = self.watch_edits(bodies, colliders);
         self.look_at_watched(bodies, colliders, full, &mut changed);
+        if changed.everything || !changed.nodes.is_empty() || !changed.added.is_empty() {
+            self.note_edit();
+        }
         let under = self.plan_changed(bodies, colliders, graph, &changed);
         self.recalculate_changed(bodies, colliders, under, changed.everything);
         for c in std::mem::take(&mut self.queued.wake_colliders) {

@@ -7,7 +7,7 @@ use std::sync::PoisonError;
 
 use super::super::rapier::prelude::*;
 
-use super::{ManifoldUpdate, RuleHooks};
+use super::{ManifoldUpdate, RuleHooks, WorldRef};
 use super::super::StepStats;
 use super::super::world::{Joints, census};
 
@@ -41,6 +41,7 @@ impl RuleHooks {
             // (`docs/performance.md`, "What the remaining cost is").
             self.count_idle_step();
             world.step_with_events(&*self, events);
+            self.record_step((&*world).into());
             return;
         }
         self.step_pipeline(
@@ -135,6 +136,7 @@ impl RuleHooks {
             events,
         );
         if idle {
+            self.record_step(WorldRef::new(narrow_phase, bodies, colliders).with_joints(impulse_joints, multibody_joints));
             return;
         }
         // Rapier applies removals to its graphs during the step.
@@ -146,6 +148,7 @@ impl RuleHooks {
             multibody: multibody_joints,
         };
         self.finish_step(narrow_phase, bodies, colliders, Some(joints), quiet);
+        self.record_step(WorldRef::new(narrow_phase, bodies, colliders).with_joints(impulse_joints, multibody_joints));
     }
 
     /// A step of a world the rules do not reach: no collider carries the
@@ -227,5 +230,6 @@ impl RuleHooks {
         colliders: &ColliderSet,
     ) {
         self.finish_step(narrow_phase, bodies, colliders, None, false);
+        self.record_step(WorldRef::new(narrow_phase, bodies, colliders));
     }
 }

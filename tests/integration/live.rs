@@ -1,7 +1,8 @@
 //! Random edit sequences while stepping real worlds: after every step, each
 //! live pair's rule equals a fresh `resolve` (policy `OnChange`, no
-//! overrides), every pair in Rapier's graph is known to the hooks, and no
-//! live pair names a removed collider, also with soft bodies added, cut,
+//! overrides), every pair in Rapier's graph is known to the hooks, no
+//! live pair names a removed collider, and the rule events of the step,
+//! applied to the live pairs they told before, give the live pairs, also with soft bodies added, cut,
 //! torn (by hand and by strain during a step) and removed, and rules with
 //! an end given and ending. And the planner
 //! changes nothing a user can see: the same world stepped with the planner
@@ -101,6 +102,7 @@ proptest! {
         edits in proptest::collection::vec(edit_with_soft(), 1..40),
     ) {
         let mut run = Run::new(&cubes, true, false);
+        run.record_rule_events();
         run.apply(&Edit::Step(1));
         for edit in &edits {
             run.apply(edit);

@@ -36,6 +36,8 @@ macro_rules! dimension_free_tests {
         mod reference;
         // Some helpers of the scenes serve only the 3D build's other tests.
         #[allow(dead_code)]
+        #[path = "rule_events.rs"]
+        mod rule_events;
         #[path = "scenes.rs"]
         pub mod scenes;
         #[path = "soft.rs"]

@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use super::rapier::prelude::*;
-use super::rules::{CollisionGroup, CollisionRule, Node, RuleHooks, Stage, Until};
+use super::rules::{CollisionGroup, CollisionRule, Node, RuleEvent, RuleHooks, Stage, Until};
 use super::{at, blade_at_x, cube, pose_bits, slab, soft_bar, soft_piece};
 
 #[derive(Clone, Debug)]
@@ -156,6 +156,8 @@ pub struct Run {
     /// The number of colliders, and of removed ones, when this run last
     /// stepped.
     at_last_step: (usize, usize),
+    /// With rule events recorded: the live pairs as the events tell them.
+    replayed: Option<std::collections::BTreeMap<(Raw, Raw), CollisionRule>>,
 }
 
 /// A soft body pulled apart: the particles of its ends with where they
@@ -256,6 +258,7 @@ impl Run {
             project: HashMap::new(),
             since_step: HashMap::new(),
             at_last_step: (0, 0),
+            replayed: None,
         };
         for &(x, y, kind) in cubes {
             run.add_cube(x, y, kind);
@@ -646,6 +649,7 @@ impl Run {
                 hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
                 self.adopt_pieces();
                 self.check();
+                self.replay_events();
             }
             Edit::Reload => {
                 #[cfg(feature = "serde")]
@@ -702,6 +706,58 @@ impl Run {
         self.hooks.step(&mut self.world);
         self.adopt_pieces();
         self.check();
+        self.replay_events();
+    }
+
+    /// Records rule events from the next step on, and checks after every
+    /// step that they tell the live pairs (see `replay_events`).
+    pub fn record_rule_events(&mut self) {
+        self.hooks.record_rule_events(true);
+        self.replayed = Some(Default::default());
+    }
+
+    /// With rule events recorded: applies this step's events to the live
+    /// pairs they told so far, checking each event against them (a pair is
+    /// created only if it was not live, changes or ends only with the rule
+    /// it had), and checks that the result is the live pairs `pairs` gives.
+    fn replay_events(&mut self) {
+        let Some(mut replayed) = self.replayed.take() else {
+            return;
+        };
+        let events: Vec<RuleEvent> = self.hooks.drain_rule_events().collect();
+        let mut last = None;
+        for event in events {
+            let (key, told) = match event {
+                RuleEvent::PairCreated { collider1, collider2, rule } => {
+                    let key = (collider1.into_raw_parts(), collider2.into_raw_parts());
+                    assert!(!replayed.contains_key(&key), "{event:?}: the pair was live");
+                    assert_ne!(rule, CollisionRule::NoPair, "{event:?}");
+                    (key, Some(rule))
+                }
+                RuleEvent::RuleChanged { collider1, collider2, from, to, .. } => {
+                    let key = (collider1.into_raw_parts(), collider2.into_raw_parts());
+                    assert_eq!(replayed.get(&key), Some(&from), "{event:?}: the rule it had");
+                    assert_ne!(from, to, "{event:?}");
+                    (key, (to != CollisionRule::NoPair).then_some(to))
+                }
+                RuleEvent::PairEnded { collider1, collider2, rule } => {
+                    let key = (collider1.into_raw_parts(), collider2.into_raw_parts());
+                    assert_eq!(replayed.get(&key), Some(&rule), "{event:?}: the rule it had");
+                    (key, None)
+                }
+                _ => unreachable!("{event:?}: a new kind of event"),
+            };
+            assert!(key.0 < key.1, "{event:?}: colliders in handle order");
+            assert!(last < Some(key), "{event:?}: events in the pairs' order, one per pair");
+            last = Some(key);
+            match told {
+                Some(rule) => replayed.insert(key, rule),
+                None => replayed.remove(&key),
+            };
+        }
+        let told: Vec<(Raw, Raw, CollisionRule)> = replayed.iter().map(|(&(a, b), &r)| (a, b, r)).collect();
+        assert_eq!(told, self.live(), "the rule events tell the live pairs");
+        self.replayed = Some(replayed);
     }
 
     /// The live pairs with their rules, sorted.

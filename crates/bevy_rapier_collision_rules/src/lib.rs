@@ -17,6 +17,8 @@
 //!   chassis.
 //! - [`CollisionRules`], on each physics context, holds its rules and
 //!   live pairs; [`CollisionRulesHooks`] is bevy_rapier's hooks.
+//! - With [`CollisionRulesPlugin::with_rule_events`], what changes for
+//!   live pairs comes as [`CollisionRuleEvent`] messages.
 //!
 //! ```
 //! use bevy::prelude::*;
@@ -82,6 +84,7 @@ mod misuse;
 mod plugin;
 mod project;
 mod queries;
+mod rule_events;
 mod rules;
 mod step;
 mod table;
@@ -90,6 +93,7 @@ pub use components::{PersonalRule, RuleGroup, SpecificRules};
 pub use hooks::{CollisionRulesHooks, HookedPair};
 pub use plugin::{CollisionRulesPlugin, RulesSystems};
 pub use queries::{ControllerFollowsRules, EntityExplanation, RuleQueries};
+pub use rule_events::CollisionRuleEvent;
 pub use rules::CollisionRules;
 pub use table::{ContextRuleTable, RuleTable};
 
@@ -98,8 +102,8 @@ pub use table::{ContextRuleTable, RuleTable};
 /// everything [`CollisionRules`] and its [`RuleHooks`] take and give.
 pub use collision_rules::{
     CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
-    GroupTable, ManifoldUpdate, Node, PairCreated, Problem, RecalculationPolicy, RuleError,
-    RuleHooks, Stage, StepStats, WorldRef,
+    GroupTable, ManifoldUpdate, Node, PairCreated, Problem, RecalculationPolicy, RuleChange,
+    RuleError, RuleEvent, RuleHooks, Stage, StepStats, Until, WorldRef,
 };
 /// The main crate, for what is not re-exported here (its dimension's
 /// module, its Rapier).
@@ -110,9 +114,10 @@ pub use rapier_collision_rules;
 /// is on; it is `bevy_rapier_collision_rules::Node`.
 pub mod prelude {
     pub use super::{
-        CollisionGroup, CollisionRule, CollisionRules, CollisionRulesHooks, CollisionRulesPlugin,
-        ContextRuleTable, ControllerFollowsRules, ManifoldUpdate, PersonalRule,
-        RecalculationPolicy, RuleGroup, RuleHooks, RuleQueries, RuleTable, SpecificRules, WorldRef,
+        CollisionGroup, CollisionRule, CollisionRuleEvent, CollisionRules, CollisionRulesHooks,
+        CollisionRulesPlugin, ContextRuleTable, ControllerFollowsRules, ManifoldUpdate,
+        PersonalRule, RecalculationPolicy, RuleChange, RuleEvent, RuleGroup, RuleHooks,
+        RuleQueries, RuleTable, SpecificRules, Until, WorldRef,
     };
 }
 

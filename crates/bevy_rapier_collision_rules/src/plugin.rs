@@ -15,6 +15,7 @@ use super::ledger::Ledger;
 use super::misuse::check_hooks;
 use super::project::notice_project_settings;
 use super::queries::{filter_controllers, restore_controller};
+use super::rule_events::{CollisionRuleEvent, record_rule_events, send_rule_events};
 use super::step::{finish_contexts, follow_soft_bodies, prepare_contexts};
 use super::{CollisionRules, ContextRuleTable, PersonalRule, RuleGroup, RuleTable, SpecificRules};
 
@@ -69,6 +70,7 @@ pub enum RulesSystems {
 pub struct CollisionRulesPlugin {
     schedule: Interned<dyn ScheduleLabel>,
     hierarchy: bool,
+    rule_events: bool,
 }
 
 impl Default for CollisionRulesPlugin {
@@ -76,6 +78,7 @@ impl Default for CollisionRulesPlugin {
         CollisionRulesPlugin {
             schedule: PostUpdate.intern(),
             hierarchy: true,
+            rule_events: false,
         }
     }
 }
@@ -102,6 +105,43 @@ impl CollisionRulesPlugin {
     #[must_use]
     pub fn without_hierarchy(mut self) -> Self {
         self.hierarchy = false;
+        self
+    }
+
+    /// Sends what changes for each context's live pairs after its step as
+    /// [`CollisionRuleEvent`] messages (`docs/bevy.md`, "Rule events"). Off
+    /// by default: recording costs a walk of the pairs per step.
+    ///
+    /// ```
+    /// use bevy::prelude::*;
+    /// use bevy_rapier3d::prelude::*;
+    /// use bevy_rapier_collision_rules::prelude::*;
+    ///
+    /// let mut app = App::new();
+    /// app.add_plugins((
+    ///     MinimalPlugins,
+    ///     TransformPlugin,
+    ///     RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
+    ///     CollisionRulesPlugin::default().with_rule_events(),
+    /// ));
+    /// let floor = app.world_mut().spawn((Transform::default(), Collider::cuboid(5.0, 0.5, 5.0))).id();
+    /// let ball = app.world_mut().spawn((
+    ///     Transform::from_xyz(0.0, 0.7, 0.0),
+    ///     RigidBody::Dynamic,
+    ///     Collider::ball(0.25),
+    ///     PersonalRule(CollisionRule::NoResponse),
+    /// )).id();
+    /// app.update();
+    /// app.update();
+    /// let messages = app.world().resource::<Messages<CollisionRuleEvent>>();
+    /// let created = messages.get_cursor().read(messages)
+    ///     .any(|m| matches!(m.event, RuleEvent::PairCreated { rule: CollisionRule::NoResponse, .. })
+    ///         && [m.entity1, m.entity2].contains(&ball) && [m.entity1, m.entity2].contains(&floor));
+    /// assert!(created, "the ball's pair with the floor came as a message");
+    /// ```
+    #[must_use]
+    pub fn with_rule_events(mut self) -> Self {
+        self.rule_events = true;
         self
     }
 }
@@ -151,6 +191,21 @@ impl Plugin for CollisionRulesPlugin {
                 .in_set(RulesSystems::Prepare),
         );
         app.add_systems(self.schedule, finish_contexts.in_set(RulesSystems::Finish));
+        if self.rule_events {
+            app.add_message::<CollisionRuleEvent>()
+                .add_systems(
+                    self.schedule,
+                    record_rule_events
+                        .before(prepare_contexts)
+                        .in_set(RulesSystems::Prepare),
+                )
+                .add_systems(
+                    self.schedule,
+                    send_rule_events
+                        .after(finish_contexts)
+                        .in_set(RulesSystems::Finish),
+                );
+        }
         // Character controllers that follow the rules decide what they may
         // touch right before bevy_rapier moves them (`docs/bevy.md`,
         // "Queries and character controllers").

@@ -2,6 +2,7 @@
 //! beside bevy_rapier's own (`docs/bevy.md`).
 
 use crate::collision_rules::{CollisionRuleSet, RuleHooks};
+use crate::rule_events::EventEntities;
 use bevy::prelude::*;
 use bevy_rapier::rapier::prelude::ColliderSet;
 
@@ -15,10 +16,12 @@ use bevy_rapier::rapier::prelude::ColliderSet;
 /// handles (`RapierColliderHandle`, `RapierRigidBodyHandle`).
 #[derive(Component)]
 pub struct CollisionRules {
-    hooks: RuleHooks,
+    pub(crate) hooks: RuleHooks,
     /// Where the context's `ColliderSet` was when it was last prepared:
     /// the hook finds its context by the set Rapier hands it.
     pub(crate) colliders_at: usize,
+    /// The entities the rule events named (see `rule_events`).
+    pub(crate) event_entities: EventEntities,
 }
 
 impl Default for CollisionRules {
@@ -31,6 +34,7 @@ impl Default for CollisionRules {
         CollisionRules {
             hooks,
             colliders_at: 0,
+            event_entities: EventEntities::default(),
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Headless apps (`MinimalPlugins`, bevy_rapier's plugin and ours) stepped
 //! by hand: every rule's outcome, edits through components, the hierarchy,
 //! despawns, the project's own settings and hooks, bevy_rapier's stepping
-//! modes and several contexts.
+//! modes, several contexts, and rule events as messages.
 
 // One test source for both crates (the 2D one links this folder): each
 // names its dimension's bevy_rapier and crate under one name.
@@ -22,6 +22,7 @@ mod hierarchy;
 mod outcomes;
 mod project;
 mod queries;
+mod rule_events;
 mod scene;
 mod soft;
 mod stepping;

@@ -29,8 +29,8 @@ macro_rules! dimension {
             RecalculationPolicy, RuleChange, RuleEvent, RuleHooks, StepStats, WorldRef,
         };
         pub use model::{
-            CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable, Node, Problem, RuleError,
-            Until,
+            CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable, Node, OneWay, OneWayKind,
+            Problem, RuleError, Until,
         };
         #[cfg(feature = "serde")]
         pub use model::{LoadError, SavedRuleSet};

@@ -492,6 +492,7 @@ impl PhysicsHooks for RuleHooks {
 
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext<'_>) {
         self.replay_frozen(context);
+        self.apply_one_ways(context);
         let (a, b) = (context.collider1, context.collider2);
         // Two soft surfaces without response keep their pair and its
         // events, and their contacts are disabled (`docs/semantics.md`,

@@ -21,6 +21,7 @@
 mod answer;
 mod expiry;
 mod live;
+mod one_way_contacts;
 mod pair_state;
 mod prepare;
 mod recalculate;

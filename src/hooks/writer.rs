@@ -186,7 +186,8 @@ impl RuleHooks {
         // A hooked soft surface also sees its soft-soft contacts, which a
         // `NoResponse` pair disables (`docs/semantics.md`, "Soft bodies").
         let modifying = self.planned.modifying.contains(&handle)
-            || (entry.hooked() && current.deformable_mesh_ref().is_some());
+            || (entry.hooked() && current.deformable_mesh_ref().is_some())
+            || self.decide.rules.one_way_of(bodies, colliders, handle).is_some();
         let target = entry.combined(own, modifying);
         // The project changed a setting through Rapier: its pairs may have
         // ended (Rapier's own filters stop them), looked up after the step.

@@ -32,6 +32,7 @@ pub(crate) mod joints;
 pub(crate) mod layers;
 pub(crate) mod node;
 pub(crate) mod node_rules;
+pub(crate) mod one_way;
 pub(crate) mod parents;
 pub(crate) mod pieces;
 pub(crate) mod records;
@@ -44,6 +45,7 @@ pub(crate) mod tombstones;
 
 pub use ending::Until;
 pub use error::RuleError;
+pub use one_way::{OneWay, OneWayKind};
 pub use group::CollisionGroup;
 pub use group_table::GroupTable;
 pub use integrity::Problem;

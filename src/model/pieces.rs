@@ -40,6 +40,7 @@ impl CollisionRuleSet {
             Some(record) if copy => {
                 self.set_group(to, record.group);
                 self.set_personal(to, record.personal);
+                self.set_one_way(to, record.one_way);
                 for (other, rule) in record.specific {
                     self.set_specific_keeping_end(to, other, rule, (from, other));
                 }

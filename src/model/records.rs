@@ -3,7 +3,7 @@
 
 use hashbrown::HashMap;
 
-use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node};
+use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, OneWay};
 
 /// The rules one node carries. Several nodes may share one record.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -12,6 +12,8 @@ pub(crate) struct Record {
     pub(crate) group: Option<CollisionGroup>,
     /// Never holds a `Defer` value: an explicit `Defer` is stored as no entry.
     pub(crate) specific: HashMap<Node, CollisionRule>,
+    /// The node's colliders are a one-way surface.
+    pub(crate) one_way: Option<OneWay>,
     /// How many nodes use this record; a record nobody uses is freed at once.
     pub(super) users: u32,
 }
@@ -22,7 +24,10 @@ impl Record {
     }
 
     pub(super) fn is_empty(&self) -> bool {
-        self.personal == CollisionRule::Defer && self.group.is_none() && self.specific.is_empty()
+        self.personal == CollisionRule::Defer
+            && self.group.is_none()
+            && self.specific.is_empty()
+            && self.one_way.is_none()
     }
 }
 

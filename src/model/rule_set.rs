@@ -62,6 +62,8 @@ pub struct CollisionRuleSet {
     pub(super) removed: Tombstones,
     /// The ends of the specific entries given one (see [`Until`](super::super::Until)).
     pub(super) endings: Endings,
+    /// A node was given a one-way setting once (see `set_one_way`).
+    pub(super) one_ways_used: bool,
 }
 
 impl Default for CollisionRuleSet {
@@ -77,6 +79,7 @@ impl Default for CollisionRuleSet {
             named: HashMap::new(),
             removed: Tombstones::default(),
             endings: Endings::default(),
+            one_ways_used: false,
         }
     }
 }

@@ -6,7 +6,7 @@
 use super::super::rapier::prelude::RigidBodyHandle;
 use serde::{Deserialize, Serialize};
 
-use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, RuleError, Until};
+use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, OneWay, RuleError, Until};
 
 /// Why a saved rule set was refused: what no rule set of this crate holds,
 /// so what only a damaged or hand-edited save can say. A refused load builds
@@ -50,6 +50,13 @@ pub enum LoadError {
         /// The node the entry is about.
         other: Node,
     },
+    /// A one-way setting whose normal is not of length 1 or whose angle is
+    /// not between 0 and pi: `OneWay` refuses them when built.
+    #[error("saved one-way setting of {node:?} has a normal not of length 1 or an angle out of 0..=pi")]
+    BadOneWay {
+        /// A node of the record.
+        node: Node,
+    },
     /// The parent map refused a saved link (a cycle, a body as its own
     /// parent).
     #[error("saved parent map: {0}")]
@@ -63,6 +70,9 @@ struct SavedRecord {
     personal: CollisionRule,
     group: Option<CollisionGroup>,
     specific: Vec<(Node, CollisionRule)>,
+    /// Absent from saves made before one-way surfaces.
+    #[serde(default)]
+    one_way: Option<OneWay>,
 }
 
 /// A rule set as saved (feature `serde`): what a rule set serializes into,
@@ -118,6 +128,7 @@ impl From<CollisionRuleSet> for SavedRuleSet {
                             personal: record.personal,
                             group: record.group,
                             specific,
+                            one_way: record.one_way,
                         },
                     ));
                 }
@@ -168,6 +179,9 @@ impl SavedRuleSet {
             if let Some(group) = record.group {
                 known(group)?;
             }
+            if let Some(&user) = record.users.first().filter(|_| record.one_way.is_some_and(|w| !w.is_valid())) {
+                return Err(LoadError::BadOneWay { node: user });
+            }
             for &user in &record.users {
                 if !users.insert(user) {
                     return Err(LoadError::SharedTwice { node: user });
@@ -201,6 +215,7 @@ impl TryFrom<SavedRuleSet> for CollisionRuleSet {
             };
             rules.set_personal(first, record.personal);
             rules.set_group(first, record.group);
+            rules.set_one_way(first, record.one_way);
             for (other, rule) in record.specific.into_iter().filter(|(_, r)| r.is_decided()) {
                 rules.put_specific(first, other, rule);
             }

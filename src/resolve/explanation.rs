@@ -64,6 +64,11 @@ pub struct Explanation {
     /// solves every contact of such a pair (`docs/semantics.md`, "Soft
     /// bodies"). Each side still moves as if the other were absent.
     pub without_contacts: bool,
+    /// The node whose one-way setting the pair's contacts follow when its
+    /// rule is `Normal` (the first collider's, else the second's; see
+    /// [`CollisionRuleSet::set_one_way`](super::super::CollisionRuleSet::set_one_way)):
+    /// contacts from the other side are dropped.
+    pub one_way: Option<Node>,
 }
 
 impl Explanation {

@@ -18,7 +18,10 @@ impl CollisionRuleSet {
     /// takes the default rule. A final `Defer` counts as `Normal`, as in a
     /// step. `source` itself and
     /// the colliders of its body are left out. Rapier's own `QueryFilter`
-    /// settings (groups, flags, exclusions) keep working beside it.
+    /// settings (groups, flags, exclusions) keep working beside it. A
+    /// one-way surface ([`set_one_way`](Self::set_one_way)) is left out
+    /// while `source` is not wholly on its blocking side, so that a
+    /// character controller jumps up through it and stands on it.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -61,6 +64,51 @@ impl CollisionRuleSet {
                 why.decided
             };
             matches!(decided, CollisionRule::Normal | CollisionRule::Defer)
+                && !self.one_way_lets_query_through(bodies, colliders, source, handle, collider)
         }
     }
+
+    /// Whether `collider`'s one-way surface, if it has one, lets a query
+    /// from `source` through: `source` is not wholly on its blocking side.
+    /// Along the surface's normal, the lowest point of `source`'s
+    /// bounding box lies below the surface's top (its extent along the
+    /// normal in its own frame, so that a rotated platform is measured as
+    /// it stands) by more than [`ONE_WAY_QUERY_SLACK`] (1 cm). A character
+    /// controller given the predicate then walks or jumps through from
+    /// below and stands on top, as a body does in a step.
+    fn one_way_lets_query_through(
+        &self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        source: ColliderHandle,
+        handle: ColliderHandle,
+        collider: &Collider,
+    ) -> bool {
+        let Some((_, one_way)) = self.one_way_of(bodies, colliders, handle) else {
+            return false;
+        };
+        let Some(source) = colliders.get(source) else {
+            return false;
+        };
+        let normal = one_way.world_normal(bodies, colliders, handle);
+        let pose = collider.position();
+        let local = pose.inverse_transform_vector(normal);
+        let aabb = collider.shape().compute_local_aabb();
+        let top = pose.translation.dot(normal) + extent(aabb.center(), aabb.half_extents(), local);
+        let low = {
+            let aabb = source.compute_aabb();
+            aabb.center().dot(normal) - extent(Vector::ZERO, aabb.half_extents(), normal)
+        };
+        low < top - ONE_WAY_QUERY_SLACK
+    }
+}
+
+/// How far below a one-way surface's top a query's source may reach and
+/// still be on its blocking side (a resting body's contact skin, a
+/// character controller's offset).
+pub(crate) const ONE_WAY_QUERY_SLACK: Real = 0.01;
+
+/// How far a box of `center` and `half` extents reaches along `direction`.
+fn extent(center: Vector, half: Vector, direction: Vector) -> Real {
+    center.dot(direction) + (half * direction).abs().element_sum()
 }

@@ -62,6 +62,10 @@ impl CollisionRuleSet {
         let mut explanation = self.explain_rule(bodies, colliders, a, b);
         explanation.without_contacts =
             explanation.rule == CollisionRule::NoResponse && soft_rigid(colliders, a, b);
+        explanation.one_way = self
+            .one_way_of(bodies, colliders, a)
+            .or_else(|| self.one_way_of(bodies, colliders, b))
+            .map(|(node, _)| node);
         explanation
     }
 
@@ -160,6 +164,7 @@ impl CollisionRuleSet {
             groups: None,
             decided: self.default_rule,
             without_contacts: false,
+            one_way: None,
         }
     }
 
@@ -203,5 +208,6 @@ fn decided(
         groups: None,
         decided: rule,
         without_contacts: false,
+        one_way: None,
     }
 }

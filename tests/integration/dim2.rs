@@ -65,3 +65,8 @@ pub const CUT_MOVES_ROOT: bool = true;
 pub fn soft_piece(center: Vector) -> SoftBodyBuilder {
     SoftBodyBuilder::grid(center, Vector::new(0.4, 0.2), 3, 2)
 }
+
+/// A body builder turned by `angle` radians.
+pub fn tilted(builder: RigidBodyBuilder, angle: f32) -> RigidBodyBuilder {
+    builder.rotation(angle)
+}

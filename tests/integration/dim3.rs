@@ -74,3 +74,9 @@ pub const CUT_MOVES_ROOT: bool = false;
 pub fn soft_piece(center: Vector) -> SoftBodyBuilder {
     SoftBodyBuilder::cuboid(center, Vector::new(0.4, 0.2, 0.2), 3, 2, 2)
 }
+
+/// A body builder turned by `angle` radians in the plane the scenes are
+/// laid out in (about the depth axis).
+pub fn tilted(builder: RigidBodyBuilder, angle: f32) -> RigidBodyBuilder {
+    builder.rotation(Vector::new(0.0, 0.0, angle))
+}

@@ -66,7 +66,7 @@ pub fn run_of(data: &[u8], locked: bool) -> Run {
                 byte(next()) % LAYERS.len(),
             ),
             14 => Edit::ProjectTypes(byte(next()), byte(next()) % TYPES.len()),
-            15 => match byte(next()) % 15 {
+            15 => match byte(next()) % 16 {
                 0 => Edit::RemoveSpecific(byte(next()), byte(next())),
                 1 => Edit::Recursive(byte(next())),
                 2 => Edit::InSet(
@@ -86,6 +86,7 @@ pub fn run_of(data: &[u8], locked: bool) -> Run {
                 11 => Edit::SleepSoft(byte(next())),
                 12 => Edit::NewSoftRoot(byte(next())),
                 13 => Edit::SpecificUntil(byte(next()), byte(next()), rule(next()), byte(next())),
+                14 => Edit::OneWay(byte(next()), byte(next()) % 4),
                 _ => Edit::Corrupt(byte(next()), byte(next()) as u32 * 4),
             },
             _ => Edit::Step(1 + byte(next()) % 3),

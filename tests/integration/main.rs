@@ -24,6 +24,8 @@ macro_rules! dimension_free_tests {
         mod joints;
         #[path = "live.rs"]
         mod live;
+        #[path = "one_way.rs"]
+        mod one_way;
         #[path = "project.rs"]
         mod project;
         #[path = "properties.rs"]

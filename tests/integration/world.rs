@@ -5,7 +5,9 @@
 use std::collections::HashMap;
 
 use super::rapier::prelude::*;
-use super::rules::{CollisionGroup, CollisionRule, Node, RuleEvent, RuleHooks, Stage, Until};
+use super::rules::{
+    CollisionGroup, CollisionRule, Node, OneWay, OneWayKind, RuleEvent, RuleHooks, Stage, Until,
+};
 use super::{at, blade_at_x, cube, pose_bits, slab, soft_bar, soft_piece};
 
 #[derive(Clone, Debug)]
@@ -13,8 +15,11 @@ pub enum Edit {
     Personal(usize, CollisionRule),
     Group(usize, Option<usize>),
     Specific(usize, usize, CollisionRule),
-    /// `set_specific_until` with an end from [`ENDS`] (an index).
+    /// `set_specific_until` with an end from [`ends`] (an index).
     SpecificUntil(usize, usize, CollisionRule, usize),
+    /// `set_one_way` on a node: an index into [`one_ways`], past its end
+    /// for none.
+    OneWay(usize, usize),
     GroupRule(usize, usize, CollisionRule),
     Parent(usize, usize),
     Unparent(usize),
@@ -118,6 +123,16 @@ pub const KINDS: [RigidBodyType; 3] = [
 ];
 pub const GROUPS: usize = 4;
 
+/// The one-way settings a node may be given: up in each semantics, and
+/// sideways.
+pub fn one_ways() -> [OneWay; 3] {
+    [
+        OneWay::new(at(0.0, 1.0)),
+        OneWay::new(at(0.0, 1.0)).kind(OneWayKind::Godot),
+        OneWay::new(at(1.0, 0.0)).max_angle(1.0),
+    ]
+}
+
 /// The ends a rule may be given: apart (with and without a margin), a
 /// count that is due at once, counts and a time that wait for apart, and a
 /// count that ends even inside an overlap.
@@ -156,6 +171,8 @@ pub struct Run {
     /// The number of colliders, and of removed ones, when this run last
     /// stepped.
     at_last_step: (usize, usize),
+    /// A one-way surface was given since the run began.
+    pub one_ways: bool,
     /// With rule events recorded: the live pairs as the events tell them.
     replayed: Option<std::collections::BTreeMap<(Raw, Raw), CollisionRule>>,
 }
@@ -259,6 +276,7 @@ impl Run {
             since_step: HashMap::new(),
             at_last_step: (0, 0),
             replayed: None,
+            one_ways: false,
         };
         for &(x, y, kind) in cubes {
             run.add_cube(x, y, kind);
@@ -413,6 +431,12 @@ impl Run {
             Edit::Specific(x, y, r) => {
                 let (node, other) = (self.node(x), self.node(y));
                 self.hooks.rules_mut().set_specific(node, other, r);
+            }
+            Edit::OneWay(x, w) => {
+                let node = self.node(x);
+                let one_way = one_ways().get(w).copied();
+                self.one_ways |= one_way.is_some();
+                self.hooks.rules_mut().set_one_way(node, one_way);
             }
             Edit::SpecificUntil(x, y, r, u) => {
                 let (node, other) = (self.node(x), self.node(y));

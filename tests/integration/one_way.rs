@@ -1,0 +1,225 @@
+//! One-way surfaces (`docs/semantics.md`, "One-way surfaces"): a rotated
+//! platform in both semantics, a box thrown up through it landing on top,
+//! the difference Godot's semantics make, a ghost passing from the blocked
+//! side, a hierarchy, `explain`, a character controller jumping up through
+//! it and standing on it, and a drop-through made of a one-way surface and
+//! a rule with an end.
+
+use super::rapier::control::KinematicCharacterController;
+use super::rapier::prelude::*;
+use super::rules::{CollisionRule, CollisionRuleSet, Node, OneWay, OneWayKind, RuleHooks, Until};
+use super::scenes::Scene;
+use super::{at, cuboid, tilted};
+
+/// A fixed platform at height 3, rotated by `angle` (radians, about the
+/// scene's depth axis), 3 m wide and `half_thick` thick.
+fn platform(scene: &mut Scene, angle: f32, half_thick: f32) -> (RigidBodyHandle, ColliderHandle) {
+    let body = scene
+        .world
+        .insert_body(tilted(RigidBodyBuilder::fixed().translation(at(0.0, 3.0)), angle));
+    let collider = scene.world.insert_collider(cuboid(3.0, half_thick, 3.0), Some(body));
+    (body, collider)
+}
+
+/// A box of half-side 0.3 at `(x, y)` moving at `vy`.
+fn thrown(scene: &mut Scene, x: f32, y: f32, vy: f32) -> RigidBodyHandle {
+    let body = scene
+        .world
+        .insert_body(RigidBodyBuilder::dynamic().translation(at(x, y)).linvel(at(0.0, vy)));
+    scene.world.insert_collider(cuboid(0.3, 0.3, 0.3), Some(body));
+    body
+}
+
+/// The height of a point at `x` on the platform's top, rotated by `angle`.
+fn top_at(x: f32, angle: f32, half_thick: f32) -> f32 {
+    3.0 + x * angle.tan() + half_thick / angle.cos()
+}
+
+#[test]
+fn a_rotated_one_way_platform_lets_a_box_up_through_and_holds_it_on_top_in_both_semantics() {
+    let angle = 0.2f32;
+    for kind in [Some(OneWayKind::Rapier), Some(OneWayKind::Godot), None] {
+        let mut scene = Scene::new();
+        let (body, _) = platform(&mut scene, angle, 0.1);
+        // Thrown up from under the platform, at its centre.
+        let from_below = thrown(&mut scene, 0.0, 1.5, 9.0);
+        let mut hooks = RuleHooks::default();
+        if let Some(kind) = kind {
+            hooks
+                .rules_mut()
+                .set_one_way(body, Some(OneWay::new(at(0.0, 1.0)).kind(kind)));
+        }
+        let mut highest = f32::MIN;
+        for _ in 0..240 {
+            hooks.step(&mut scene.world);
+            highest = highest.max(scene.y(from_below));
+        }
+        let y = scene.y(from_below);
+        match kind {
+            Some(kind) => {
+                // On the tilted top it slides down; it stays on it while
+                // above the platform's edge.
+                let x = scene.x(from_below);
+                let on_top = (y - (top_at(x, angle, 0.1) + 0.3)).abs() < 0.1 || x.abs() > 3.0;
+                assert!(highest > 4.0, "{kind:?}: the box went up through the platform: highest {highest}");
+                assert!(on_top && y > 2.0, "{kind:?}: the box came down on the platform's top: ({x}, {y})");
+            }
+            None => {
+                assert!(highest < 3.0, "no one-way: the platform stops the box from below: highest {highest}");
+            }
+        }
+    }
+}
+
+#[test]
+fn godot_lets_through_a_body_moving_out_along_the_normal_where_rapier_pushes_it() {
+    // A box inside a thick platform, its centre above the platform's
+    // centre, rising slowly with no gravity: the contact's normal points
+    // out of the top, so Rapier's semantics keep it (the overlap pushes
+    // the box out fast); Godot's let a body moving out along the normal
+    // through (it keeps its speed).
+    let speed = |kind: OneWayKind| {
+        let mut scene = Scene::new();
+        scene.world.gravity = Vector::ZERO;
+        let (body, _) = platform(&mut scene, 0.0, 0.5);
+        let rising = thrown(&mut scene, 0.0, 3.4, 0.5);
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_one_way(body, Some(OneWay::new(at(0.0, 1.0)).kind(kind)));
+        let mut fastest = 0.0f32;
+        for _ in 0..30 {
+            let before = scene.y(rising);
+            hooks.step(&mut scene.world);
+            fastest = fastest.max((scene.y(rising) - before) * 60.0);
+        }
+        fastest
+    };
+    let (rapier, godot) = (speed(OneWayKind::Rapier), speed(OneWayKind::Godot));
+    println!("rising out of a one-way platform: {rapier:.3} m/s (Rapier's semantics), {godot:.3} m/s (Godot's)");
+    assert!((godot - 0.5).abs() < 1e-3, "Godot's: the box keeps its 0.5 m/s: {godot}");
+    assert!(rapier > 1.0, "Rapier's: the box is pushed out of the top: {rapier} m/s");
+}
+
+#[test]
+fn a_ghost_passes_a_one_way_surface_from_the_blocked_side_and_a_group_can_ignore_it() {
+    let mut scene = Scene::new();
+    let (body, platform_collider) = platform(&mut scene, 0.0, 0.1);
+    let ghost = thrown(&mut scene, -1.0, 4.0, 0.0);
+    let ignored = thrown(&mut scene, 1.0, 4.0, 0.0);
+    let held = thrown(&mut scene, 0.0, 4.0, 0.0);
+    let mut hooks = RuleHooks::default();
+    let rules = hooks.rules_mut();
+    rules.set_one_way(body, Some(OneWay::new(at(0.0, 1.0))));
+    rules.set_personal(ghost, CollisionRule::NoResponse);
+    let (lifts, debris) = (rules.create_group(), rules.create_group());
+    rules.set_group(body, Some(lifts));
+    rules.set_group(ignored, Some(debris));
+    rules.set_group_rule(lifts, debris, CollisionRule::NoPair);
+    for _ in 0..120 {
+        hooks.step(&mut scene.world);
+    }
+    assert!(scene.y(ghost) < 1.0, "the ghost fell through from above: y = {}", scene.y(ghost));
+    assert!(scene.y(ignored) < 1.0, "the group ignores the platform: y = {}", scene.y(ignored));
+    let y = scene.y(held);
+    assert!((y - 3.4).abs() < 0.02, "a plain box rests on the one-way platform: y = {y}");
+    let held_collider = scene.world.bodies[held].colliders()[0];
+    let why = hooks
+        .rules()
+        .explain(&scene.world.bodies, &scene.world.colliders, held_collider, platform_collider);
+    assert_eq!(why.one_way, Some(Node::Body(body)), "explain names the one-way node");
+}
+
+#[test]
+fn a_one_way_setting_follows_the_parent_map_and_the_nearest_wins() {
+    let mut bodies = RigidBodySet::new();
+    let mut colliders = ColliderSet::new();
+    let lift = bodies.insert(RigidBodyBuilder::fixed());
+    let step = bodies.insert(RigidBodyBuilder::fixed());
+    let c = colliders.insert_with_parent(cuboid(1.0, 0.1, 1.0), step, &mut bodies);
+    let mut rules = CollisionRuleSet::default();
+    rules.set_parent(step, lift).expect("a parent");
+    let up = OneWay::new(at(0.0, 1.0));
+    rules.set_one_way(lift, Some(up));
+    assert_eq!(rules.one_way_of(&bodies, &colliders, c), Some((Node::Body(lift), up)));
+    let side = OneWay::new(at(1.0, 0.0)).kind(OneWayKind::Godot);
+    rules.set_one_way(c, Some(side));
+    assert_eq!(rules.one_way_of(&bodies, &colliders, c), Some((Node::Collider(c), side)));
+    rules.set_one_way(c, None);
+    rules.set_one_way(lift, None);
+    assert_eq!(rules.one_way_of(&bodies, &colliders, c), None);
+}
+
+/// A character controller's run: starts under the platform, jumps up
+/// through it for half a second, then falls; returns its height at the end
+/// and the highest it reached.
+fn jump_through(one_way: bool) -> (f32, f32) {
+    let mut scene = Scene::new();
+    let (platform_body, _) = platform(&mut scene, 0.0, 0.1);
+    let character = scene
+        .world
+        .insert_body(RigidBodyBuilder::kinematic_position_based().translation(at(0.0, 1.0)));
+    let shape = scene.world.insert_collider(cuboid(0.3, 0.5, 0.3), Some(character));
+    let mut rules = CollisionRuleSet::default();
+    if one_way {
+        rules.set_one_way(platform_body, Some(OneWay::new(at(0.0, 1.0))));
+    }
+    let controller = KinematicCharacterController {
+        snap_to_ground: None,
+        ..KinematicCharacterController::default()
+    };
+    let dt = 1.0 / 60.0;
+    let mut highest = f32::MIN;
+    for step in 0..180 {
+        let vy = if step < 30 { 8.0 } else { -4.0 };
+        let next = {
+            let world = &scene.world;
+            let passes = rules.query_predicate(&world.bodies, &world.colliders, shape);
+            let filter = QueryFilter::default().exclude_rigid_body(character).predicate(&passes);
+            let queries = world.query_pipeline_with_filter(filter);
+            let collider = &world.colliders[shape];
+            let movement = controller.move_shape(dt, &queries, collider.shape(), collider.position(), at(0.0, vy * dt), |_| {});
+            world.bodies[character].translation() + movement.translation
+        };
+        scene.world.bodies[character].set_next_kinematic_translation(next);
+        scene.world.step();
+        highest = highest.max(scene.y(character));
+    }
+    (scene.y(character), highest)
+}
+
+#[test]
+fn a_character_controller_jumps_up_through_a_one_way_platform_and_stands_on_it() {
+    let (y, highest) = jump_through(true);
+    assert!(highest > 4.0, "the character went up through the platform: highest {highest}");
+    assert!((y - 3.6).abs() < 0.05, "the character stands on the platform: y = {y}");
+    let (y, highest) = jump_through(false);
+    assert!(highest < 2.5 && y < 2.0, "without one-way, the platform stops the jump: highest {highest}, y = {y}");
+}
+
+#[test]
+fn a_drop_through_is_a_one_way_surface_and_a_rule_with_an_end() {
+    let mut scene = Scene::new();
+    let (body, _) = platform(&mut scene, 0.0, 0.1);
+    let player = thrown(&mut scene, 0.0, 3.4, 0.0);
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_one_way(body, Some(OneWay::new(at(0.0, 1.0))));
+    for _ in 0..30 {
+        hooks.step(&mut scene.world);
+    }
+    assert!((scene.y(player) - 3.4).abs() < 0.02, "the player stands on the platform");
+    // Down through it for a quarter of a second...
+    hooks
+        .rules_mut()
+        .set_specific_until(player, body, CollisionRule::NoContacts, Until::seconds(0.25));
+    for _ in 0..90 {
+        hooks.step(&mut scene.world);
+    }
+    let y = scene.y(player);
+    assert!((y - 0.3).abs() < 0.02, "the player dropped to the ground: y = {y}");
+    // ... and back up through it from below, onto it.
+    scene.world.bodies[player].set_linvel(at(0.0, 9.0), true);
+    for _ in 0..180 {
+        hooks.step(&mut scene.world);
+    }
+    let y = scene.y(player);
+    assert!((y - 3.4).abs() < 0.02, "up through from below, the player stands on it again: y = {y}");
+}

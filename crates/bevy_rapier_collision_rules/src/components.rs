@@ -1,6 +1,6 @@
 //! The rules an entity carries, as components (`docs/bevy.md`).
 
-use crate::collision_rules::{CollisionGroup, CollisionRule};
+use crate::collision_rules::{CollisionGroup, CollisionRule, OneWay};
 use bevy::prelude::*;
 
 /// The entity's collision group, from the [`RuleTable`](super::RuleTable)
@@ -23,6 +23,22 @@ pub struct RuleGroup(pub CollisionGroup);
 /// rule decides, before any group. Removing the component clears it.
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PersonalRule(pub CollisionRule);
+
+/// The entity's colliders (a rigid body's, and those of the bodies below
+/// it in the hierarchy) are a one-way surface: in a `Normal` pair they
+/// block only from the side the normal points to, in the body's frame
+/// (`docs/semantics.md`, "One-way surfaces"). Removing the component takes
+/// it away.
+///
+/// ```
+/// use bevy::prelude::*;
+/// use bevy_rapier_collision_rules::{OneWay, OneWaySurface};
+///
+/// let platform = OneWaySurface(OneWay::new(Vec3::Y));
+/// assert_eq!(platform.0.normal(), Vec3::Y);
+/// ```
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct OneWaySurface(pub OneWay);
 
 /// What the entity says about other entities: the most specific rules.
 /// An entry about an entity of another physics context means nothing and

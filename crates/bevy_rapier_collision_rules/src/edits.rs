@@ -13,7 +13,7 @@ use bevy_rapier::prelude::{
 };
 
 use super::ledger::{Applied, Ledger, Place};
-use super::{CollisionRules, PersonalRule, RuleGroup, SpecificRules};
+use super::{CollisionRules, OneWaySurface, PersonalRule, RuleGroup, SpecificRules};
 
 /// An entity's physics handles: its rigid body, soft body, collider, context.
 type Handles = (
@@ -116,14 +116,21 @@ type Carried = (
     Option<&'static RuleGroup>,
     Option<&'static PersonalRule>,
     Option<&'static SpecificRules>,
+    Option<&'static OneWaySurface>,
 );
 
 type Edited = (
-    Or<(With<RuleGroup>, With<PersonalRule>, With<SpecificRules>)>,
+    Or<(
+        With<RuleGroup>,
+        With<PersonalRule>,
+        With<SpecificRules>,
+        With<OneWaySurface>,
+    )>,
     Or<(
         Changed<RuleGroup>,
         Changed<PersonalRule>,
         Changed<SpecificRules>,
+        Changed<OneWaySurface>,
         Changed<RapierRigidBodyHandle>,
         Changed<RapierSoftBodyHandle>,
         Changed<RapierColliderHandle>,
@@ -135,7 +142,12 @@ type Edited = (
 /// another root body without a component changing.
 type RuledSoftBodies = (
     With<RapierSoftBodyHandle>,
-    Or<(With<RuleGroup>, With<PersonalRule>, With<SpecificRules>)>,
+    Or<(
+        With<RuleGroup>,
+        With<PersonalRule>,
+        With<SpecificRules>,
+        With<OneWaySurface>,
+    )>,
 );
 
 /// The pieces a soft body tore or was cut into are named wherever the soft
@@ -200,7 +212,7 @@ pub(crate) fn apply_rule_components(
     dirty.sort_unstable();
     dirty.dedup();
     for entity in dirty {
-        let components = carried.get(entity).unwrap_or((None, None, None));
+        let components = carried.get(entity).unwrap_or((None, None, None, None));
         apply(ledger, &mut contexts, &objects, entity, components);
     }
 }
@@ -269,14 +281,15 @@ fn apply(
     contexts: &mut Query<&mut CollisionRules>,
     objects: &Objects,
     entity: Entity,
-    (group, personal, specific): (
+    (group, personal, specific, one_way): (
         Option<&RuleGroup>,
         Option<&PersonalRule>,
         Option<&SpecificRules>,
+        Option<&OneWaySurface>,
     ),
 ) {
     let place = objects.place_of(entity);
-    let wants = group.is_some() || personal.is_some() || specific.is_some();
+    let wants = group.is_some() || personal.is_some() || specific.is_some() || one_way.is_some();
     let old = ledger.applied.remove(&entity);
     if let Some(old) = &old {
         ledger.unname(entity, old);
@@ -304,6 +317,7 @@ fn apply(
         place,
         group: None,
         personal: CollisionRule::Defer,
+        one_way: None,
         specific: Vec::new(),
     });
     let (context, node) = place;
@@ -315,6 +329,10 @@ fn apply(
     let personal = personal.map_or(CollisionRule::Defer, |p| p.0);
     if before.personal != personal {
         set.set_personal(node, personal);
+    }
+    let one_way = one_way.map(|w| w.0);
+    if before.one_way != one_way {
+        set.set_one_way(node, one_way);
     }
     let mut entries = Vec::new();
     for (target, rule) in specific.into_iter().flat_map(SpecificRules::iter) {
@@ -360,6 +378,7 @@ fn apply(
             place,
             group,
             personal,
+            one_way,
             specific: entries,
         },
     );
@@ -370,6 +389,7 @@ fn clear(set: &mut CollisionRuleSet, applied: &Applied) {
     let node = applied.place.1;
     set.set_group(node, None);
     set.set_personal(node, CollisionRule::Defer);
+    set.set_one_way(node, None);
     for &(_, target, _) in &applied.specific {
         set.remove_specific(node, target);
     }

@@ -4,7 +4,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use crate::collision_rules::{CollisionGroup, CollisionRule, Node};
+use crate::collision_rules::{CollisionGroup, CollisionRule, Node, OneWay};
 use bevy::prelude::*;
 
 /// Where an entity's rules live: its context entity and its node there.
@@ -16,6 +16,7 @@ pub(crate) struct Applied {
     pub(crate) place: Place,
     pub(crate) group: Option<CollisionGroup>,
     pub(crate) personal: CollisionRule,
+    pub(crate) one_way: Option<OneWay>,
     /// Each entry: the entity named, its node when the entry was set, the rule.
     pub(crate) specific: Vec<(Entity, Node, CollisionRule)>,
 }

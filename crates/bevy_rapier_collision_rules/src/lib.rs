@@ -5,7 +5,8 @@
 //! general across compound hierarchies) with bevy_rapier's world, entities
 //! and hooks.
 //!
-//! - [`RuleGroup`], [`PersonalRule`] and [`SpecificRules`] on an entity
+//! - [`RuleGroup`], [`PersonalRule`], [`SpecificRules`] and
+//!   [`OneWaySurface`] on an entity
 //!   with a rigid body, a soft body or a collider give it rules (the
 //!   pieces of a soft body's tear keep them); changing or removing
 //!   them reaches live pairs before the next step (sleeping bodies are
@@ -89,7 +90,7 @@ mod rules;
 mod step;
 mod table;
 
-pub use components::{PersonalRule, RuleGroup, SpecificRules};
+pub use components::{OneWaySurface, PersonalRule, RuleGroup, SpecificRules};
 pub use hooks::{CollisionRulesHooks, HookedPair};
 pub use plugin::{CollisionRulesPlugin, RulesSystems};
 pub use queries::{ControllerFollowsRules, EntityExplanation, RuleQueries};
@@ -102,8 +103,9 @@ pub use table::{ContextRuleTable, RuleTable};
 /// everything [`CollisionRules`] and its [`RuleHooks`] take and give.
 pub use collision_rules::{
     CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
-    GroupTable, ManifoldUpdate, Node, PairCreated, Problem, RecalculationPolicy, RuleChange,
-    RuleError, RuleEvent, RuleHooks, Stage, StepStats, Until, WorldRef,
+    GroupTable, ManifoldUpdate, Node, OneWay, OneWayKind, PairCreated, Problem,
+    RecalculationPolicy, RuleChange, RuleError, RuleEvent, RuleHooks, Stage, StepStats, Until,
+    WorldRef,
 };
 /// The main crate, for what is not re-exported here (its dimension's
 /// module, its Rapier).
@@ -115,9 +117,9 @@ pub use rapier_collision_rules;
 pub mod prelude {
     pub use super::{
         CollisionGroup, CollisionRule, CollisionRuleEvent, CollisionRules, CollisionRulesHooks,
-        CollisionRulesPlugin, ContextRuleTable, ControllerFollowsRules, ManifoldUpdate,
-        PersonalRule, RecalculationPolicy, RuleChange, RuleEvent, RuleGroup, RuleHooks,
-        RuleQueries, RuleTable, SpecificRules, Until, WorldRef,
+        CollisionRulesPlugin, ContextRuleTable, ControllerFollowsRules, ManifoldUpdate, OneWay,
+        OneWayKind, OneWaySurface, PersonalRule, RecalculationPolicy, RuleChange, RuleEvent,
+        RuleGroup, RuleHooks, RuleQueries, RuleTable, SpecificRules, Until, WorldRef,
     };
 }
 

@@ -17,7 +17,10 @@ use super::project::notice_project_settings;
 use super::queries::{filter_controllers, restore_controller};
 use super::rule_events::{CollisionRuleEvent, record_rule_events, send_rule_events};
 use super::step::{finish_contexts, follow_soft_bodies, prepare_contexts};
-use super::{CollisionRules, ContextRuleTable, PersonalRule, RuleGroup, RuleTable, SpecificRules};
+use super::{
+    CollisionRules, ContextRuleTable, OneWaySurface, PersonalRule, RuleGroup, RuleTable,
+    SpecificRules,
+};
 
 /// The plugin's systems.
 #[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -239,7 +242,7 @@ fn note_unparented(event: On<Remove<ChildOf>>, mut ledger: ResMut<Ledger>) {
 }
 
 fn note_rules_removed(
-    event: On<Remove<(RuleGroup, PersonalRule, SpecificRules)>>,
+    event: On<Remove<(RuleGroup, PersonalRule, SpecificRules, OneWaySurface)>>,
     mut ledger: ResMut<Ledger>,
 ) {
     ledger.removed.push(event.entity);

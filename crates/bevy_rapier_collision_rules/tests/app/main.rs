@@ -19,6 +19,7 @@ mod contexts;
 mod edits;
 mod elevator;
 mod hierarchy;
+mod one_way;
 mod outcomes;
 mod project;
 mod queries;

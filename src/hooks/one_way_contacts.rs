@@ -7,6 +7,7 @@
 use super::super::rapier::prelude::*;
 
 use super::super::OneWayKind;
+use super::super::model::body_of;
 use super::RuleHooks;
 
 /// Where a manifold stands with one surface, kept in two bits of the
@@ -101,12 +102,7 @@ fn approach_speed(
     other: ColliderHandle,
     normal: Vector,
 ) -> Real {
-    let velocity = |c: ColliderHandle| {
-        colliders
-            .get(c)
-            .and_then(|c| c.parent())
-            .and_then(|b| bodies.get(b))
-            .map_or(Vector::ZERO, |b| b.linvel())
-    };
+    let velocity =
+        |c: ColliderHandle| body_of(bodies, colliders, c).map_or(Vector::ZERO, |b| b.linvel());
     (velocity(other) - velocity(surface)).dot(normal)
 }

@@ -3,9 +3,24 @@
 //! whether a pair joins a soft body's surface to a rigid collider, the one
 //! fact about soft bodies the answers read.
 
-use super::super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodyHandle, RigidBodySet};
+use super::super::rapier::prelude::{
+    ColliderHandle, ColliderSet, RigidBody, RigidBodyHandle, RigidBodySet,
+};
 
 use super::super::Node;
+
+/// The rigid body `collider` is attached to, if any (and in the set).
+#[inline]
+pub(crate) fn body_of<'a>(
+    bodies: &'a RigidBodySet,
+    colliders: &ColliderSet,
+    collider: ColliderHandle,
+) -> Option<&'a RigidBody> {
+    colliders
+        .get(collider)
+        .and_then(|c| c.parent())
+        .and_then(|b| bodies.get(b))
+}
 
 /// Whether `body` is a dynamic rigid body of `bodies`; a missing body, or
 /// none (a collider without a body), is not.

@@ -55,7 +55,7 @@ pub use rule_set::CollisionRuleSet;
 #[cfg(feature = "serde")]
 pub use snapshot::{LoadError, SavedRuleSet};
 pub(crate) use ending::Due;
-pub(crate) use body_kinds::{BodyKinds, dynamic_body, is_dynamic, soft_rigid};
+pub(crate) use body_kinds::{BodyKinds, body_of, dynamic_body, is_dynamic, soft_rigid};
 pub(crate) use pieces::Heir;
 pub(crate) use node::HandleMap;
 pub(crate) use node_rules::CollidersUnder;

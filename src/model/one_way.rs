@@ -5,6 +5,7 @@
 use super::super::rapier::prelude::{ColliderHandle, ColliderSet, Real, RigidBodySet, Vector};
 
 use super::super::{CollisionRuleSet, Node};
+use super::body_of;
 
 /// Which bodies a [`OneWay`] surface blocks.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -111,8 +112,7 @@ impl OneWay {
     /// world's for a collider without one).
     #[must_use]
     pub fn world_normal(&self, bodies: &RigidBodySet, colliders: &ColliderSet, surface: ColliderHandle) -> Vector {
-        let body = colliders.get(surface).and_then(|c| c.parent()).and_then(|b| bodies.get(b));
-        match body {
+        match body_of(bodies, colliders, surface) {
             Some(body) => body.position().transform_vector(self.normal),
             None => self.normal,
         }

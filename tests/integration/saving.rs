@@ -10,6 +10,17 @@ use rapier3d::prelude::*;
 
 use CollisionRule::*;
 
+/// `world` and `hooks`' rules saved (serde, the world with the project's
+/// own settings, not the crate's: the README's way) and loaded back.
+fn save_and_load(
+    world: &mut PhysicsWorld,
+    hooks: &mut RuleHooks,
+) -> Result<(PhysicsWorld, CollisionRuleSet), Box<dyn std::error::Error>> {
+    hooks.restore_project_settings(&mut world.colliders);
+    let saved = serde_json::to_string(&(&*world, hooks.rules()))?;
+    Ok(serde_json::from_str(&saved)?)
+}
+
 /// A world and a rule set using every kind of rule.
 fn world_with_every_rule() -> Result<(PhysicsWorld, CollisionRuleSet), RuleError> {
     let mut world = PhysicsWorld::new();
@@ -106,11 +117,7 @@ fn a_world_saved_with_its_rules_resolves_and_steps_as_before()
     for _ in 0..5 {
         hooks.step(&mut world);
     }
-    // The world is saved with the project's own settings, not the crate's.
-    hooks.restore_project_settings(&mut world.colliders);
-    let saved = serde_json::to_string(&(&world, hooks.rules()))?;
-    let (mut loaded_world, loaded_rules): (PhysicsWorld, CollisionRuleSet) =
-        serde_json::from_str(&saved)?;
+    let (mut loaded_world, loaded_rules) = save_and_load(&mut world, &mut hooks)?;
     assert_eq!(
         all_rules(&loaded_rules, &loaded_world),
         all_rules(hooks.rules(), &world)
@@ -163,10 +170,7 @@ fn rules_with_an_end_are_saved_with_what_is_left_and_end_after_loading_as_they_w
     for _ in 0..4 {
         hooks.step(&mut world);
     }
-    hooks.restore_project_settings(&mut world.colliders);
-    let saved = serde_json::to_string(&(&world, hooks.rules()))?;
-    let (mut loaded_world, loaded_rules): (PhysicsWorld, CollisionRuleSet) =
-        serde_json::from_str(&saved)?;
+    let (mut loaded_world, loaded_rules) = save_and_load(&mut world, &mut hooks)?;
     assert_eq!(
         loaded_rules.specific_until(cube, ground),
         Some(Until::steps(6).even_if_overlapping())
@@ -379,10 +383,7 @@ fn a_world_with_soft_bodies_saved_with_its_rules_steps_as_before()
     for _ in 0..3 {
         hooks.step(&mut world);
     }
-    hooks.restore_project_settings(&mut world.colliders);
-    let saved = serde_json::to_string(&(&world, hooks.rules()))?;
-    let (mut loaded_world, loaded_rules): (PhysicsWorld, CollisionRuleSet) =
-        serde_json::from_str(&saved)?;
+    let (mut loaded_world, loaded_rules) = save_and_load(&mut world, &mut hooks)?;
     let mut loaded_hooks = RuleHooks::new(loaded_rules);
     for _ in 0..40 {
         hooks.step(&mut world);

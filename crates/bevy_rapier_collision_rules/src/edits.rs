@@ -119,13 +119,16 @@ type Carried = (
     Option<&'static OneWaySurface>,
 );
 
+/// An entity with any rule component.
+type Ruled = Or<(
+    With<RuleGroup>,
+    With<PersonalRule>,
+    With<SpecificRules>,
+    With<OneWaySurface>,
+)>;
+
 type Edited = (
-    Or<(
-        With<RuleGroup>,
-        With<PersonalRule>,
-        With<SpecificRules>,
-        With<OneWaySurface>,
-    )>,
+    Ruled,
     Or<(
         Changed<RuleGroup>,
         Changed<PersonalRule>,
@@ -140,15 +143,7 @@ type Edited = (
 
 /// Soft body entities with rule components: a tear may give the soft body
 /// another root body without a component changing.
-type RuledSoftBodies = (
-    With<RapierSoftBodyHandle>,
-    Or<(
-        With<RuleGroup>,
-        With<PersonalRule>,
-        With<SpecificRules>,
-        With<OneWaySurface>,
-    )>,
-);
+type RuledSoftBodies = (With<RapierSoftBodyHandle>, Ruled);
 
 /// The pieces a soft body tore or was cut into are named wherever the soft
 /// body was: an entity whose `SpecificRules` name the torn soft body gets

@@ -143,8 +143,13 @@ impl RuleHooks {
                 }
                 // Straight to the state: a `NoPair` override is no live
                 // pair to `set_pair_rule`, but Rapier still holds the pair.
+                // The rule the rules give the pair now: its bodies may have
+                // changed type while the override held it.
+                let computed = self.calculate(bodies, colliders, a, b);
                 if let Some(state) = self.pairs.get_mut(key) {
                     state.overridden = None;
+                    state.computed = computed;
+                    state.kinds = key.kinds(bodies, colliders);
                 }
                 self.queued.replan = Some(super::PlanCause::PinnedPair);
                 self.wake_pair(a, b);

@@ -242,8 +242,12 @@ impl RuleHooks {
         rule: CollisionRule,
     ) -> bool {
         let known = self.rapier_state(world.into(), a, b);
-        self.pair_ends.remove(&PairKey::new(a, b));
-        self.override_pair(a, b, known, rule)
+        let set = self.override_pair(a, b, known, rule);
+        // A pair that takes no override keeps the end it had.
+        if set {
+            self.pair_ends.remove(&PairKey::new(a, b));
+        }
+        set
     }
 
     /// Edits the live pair of `a` and `b` (a pair the hooks do not track

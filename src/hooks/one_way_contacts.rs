@@ -52,21 +52,34 @@ impl RuleHooks {
         }
         let (bodies, colliders) = (context.bodies, context.colliders);
         let sides = [context.collider1, context.collider2];
-        for (side, &surface) in sides.iter().enumerate() {
-            let Some((_, one_way)) = rules.one_way_of(bodies, colliders, surface) else {
+        // Each side's surface, with its normal in the world and how fast
+        // the other side comes towards it.
+        let surfaces = [0, 1].map(|side| {
+            let (node, one_way) = rules.one_way_of(bodies, colliders, sides[side])?;
+            let normal = one_way.world_normal(bodies, colliders, node);
+            let arriving = approach_speed(bodies, colliders, sides[side], sides[1 - side], normal);
+            Some((one_way, normal, arriving))
+        });
+        if surfaces.iter().all(Option::is_none) {
+            return;
+        }
+        let Some(rigid) = context.rigid_mut() else {
+            return;
+        };
+        // Both sides decide on the contacts as Rapier made them; the
+        // contacts are dropped once, after.
+        let empty = rigid.solver_contacts.is_empty();
+        let separated = rigid.solver_contacts.iter().all(|c| c.dist > 0.0);
+        let mut drop = false;
+        for (side, surface) in surfaces.into_iter().enumerate() {
+            let Some((one_way, normal, arriving)) = surface else {
                 continue;
-            };
-            let other = sides[1 - side];
-            let world_normal = one_way.world_normal(bodies, colliders, surface);
-            let arriving = approach_speed(bodies, colliders, surface, other, world_normal);
-            let Some(rigid) = context.rigid_mut() else {
-                return;
             };
             // The manifold's normal points from the first collider to the
             // second: out of the surface when it is the first.
             let out = if side == 0 { *rigid.normal } else { -*rigid.normal };
             let known = out.length_squared() > 0.1;
-            let mut ok = known && out.dot(world_normal) >= one_way.allowed_angle().cos();
+            let mut ok = known && out.dot(normal) >= one_way.allowed_angle().cos();
             if one_way.semantics() == OneWayKind::Godot {
                 // Godot lets through a body leaving along the normal.
                 ok &= arriving <= 0.0;
@@ -74,21 +87,22 @@ impl RuleHooks {
             let next = match standing(*rigid.user_data, side) {
                 Standing::Unknown if ok => Standing::Allowed,
                 Standing::Unknown => {
-                    rigid.solver_contacts.clear();
+                    drop = true;
                     // A zero normal (touching at a point) tells nothing: wait.
                     if known { Standing::Forbidden } else { Standing::Unknown }
                 }
-                Standing::Forbidden if ok && rigid.solver_contacts.iter().all(|c| c.dist > 0.0) => {
-                    Standing::Allowed
-                }
+                Standing::Forbidden if ok && separated => Standing::Allowed,
                 Standing::Forbidden => {
-                    rigid.solver_contacts.clear();
+                    drop = true;
                     Standing::Forbidden
                 }
-                Standing::Allowed if rigid.solver_contacts.is_empty() => Standing::Unknown,
+                Standing::Allowed if empty => Standing::Unknown,
                 Standing::Allowed => Standing::Allowed,
             };
             set_standing(rigid.user_data, side, next);
+        }
+        if drop {
+            rigid.solver_contacts.clear();
         }
     }
 }

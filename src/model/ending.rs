@@ -186,8 +186,12 @@ impl Until {
                 *left -= 1;
                 false
             }
-            // The nearest whole number of steps: half a step left is none.
-            Count::Seconds(left) if *left < dt * 0.5 => true,
+            // The nearest whole number of steps: half a step left is none
+            // (and none stays none, whatever later steps last).
+            Count::Seconds(left) if *left < dt * 0.5 => {
+                *left = -1.0;
+                true
+            }
             Count::Seconds(left) => {
                 *left -= dt;
                 false
@@ -214,7 +218,8 @@ impl CollisionRuleSet {
     /// `set_specific` of the same entry makes it timeless again.
     ///
     /// The sides tested for apart are `node` and `other` with every
-    /// collider under them. Under [`RecalculationPolicy::Manual`](super::super::RecalculationPolicy::Manual),
+    /// collider under them (if `node` leaves a record others share, the
+    /// first of them takes its place). Under [`RecalculationPolicy::Manual`](super::super::RecalculationPolicy::Manual),
     /// a live pair keeps its rule after the end until it ends or is
     /// recalculated, as after any edit.
     ///
@@ -293,6 +298,26 @@ impl CollisionRuleSet {
             }
             None => {
                 self.endings.remove(&(node, other));
+            }
+        }
+    }
+
+    /// `node` left record `id` (it shares another's now, or carries none):
+    /// the ends given through it go to the record's first other user, whose
+    /// sides are tested from now on, or with the record if nobody is left.
+    pub(super) fn endings_leave(&mut self, node: Node, id: super::records::RecordId) {
+        if self.endings.is_empty() || self.record_id(node) == Some(id) {
+            return;
+        }
+        let keys: Vec<(Node, Node)> = self.endings.keys().filter(|(n, _)| *n == node).copied().collect();
+        if keys.is_empty() {
+            return;
+        }
+        let heir = self.nodes().filter(|&n| self.record_id(n) == Some(id)).min();
+        for key in keys {
+            let until = self.endings.remove(&key).expect("a listed end");
+            if let Some(heir) = heir {
+                self.endings.entry((heir, key.1)).or_insert(until);
             }
         }
     }

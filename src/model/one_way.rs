@@ -108,11 +108,16 @@ impl OneWay {
         self.kind
     }
 
-    /// The normal in the world for `surface`: in the frame of its body (the
-    /// world's for a collider without one).
+    /// The normal in the world, for the setting carried by `node`: in the
+    /// frame of `node`'s body (a collider's own body; the world's for a
+    /// collider without one), whichever collider below it the surface is.
     #[must_use]
-    pub fn world_normal(&self, bodies: &RigidBodySet, colliders: &ColliderSet, surface: ColliderHandle) -> Vector {
-        match body_of(bodies, colliders, surface) {
+    pub fn world_normal(&self, bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) -> Vector {
+        let body = match node {
+            Node::Body(body) => bodies.get(body),
+            Node::Collider(collider) => body_of(bodies, colliders, collider),
+        };
+        match body {
             Some(body) => body.position().transform_vector(self.normal),
             None => self.normal,
         }

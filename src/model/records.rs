@@ -163,6 +163,7 @@ impl CollisionRuleSet {
         };
         if let Some(previous) = previous {
             self.release(previous);
+            self.endings_leave(node, previous);
         }
     }
 
@@ -232,6 +233,7 @@ impl CollisionRuleSet {
         };
         if let Some(previous) = previous {
             self.release(previous);
+            self.endings_leave(node, previous);
         }
     }
 

@@ -70,8 +70,9 @@ impl CollisionRuleSet {
 
     /// Whether `collider`'s one-way surface, if it has one, lets a query
     /// from `source` through: `source` is not wholly on its blocking side.
-    /// Along the surface's normal, the lowest point of `source`'s
-    /// bounding box lies below the surface's top (its extent along the
+    /// Along the surface's normal, the lowest point of `source` (of its
+    /// bounding box for a shape that is not convex) lies below the
+    /// surface's top (its extent along the
     /// normal in its own frame, so that a rotated platform is measured as
     /// it stands) by more than [`ONE_WAY_QUERY_SLACK`] (1 cm). A character
     /// controller given the predicate then walks or jumps through from
@@ -84,20 +85,30 @@ impl CollisionRuleSet {
         handle: ColliderHandle,
         collider: &Collider,
     ) -> bool {
-        let Some((_, one_way)) = self.one_way_of(bodies, colliders, handle) else {
+        let Some((node, one_way)) = self.one_way_of(bodies, colliders, handle) else {
             return false;
         };
         let Some(source) = colliders.get(source) else {
             return false;
         };
-        let normal = one_way.world_normal(bodies, colliders, handle);
+        let normal = one_way.world_normal(bodies, colliders, node);
         let pose = collider.position();
         let local = pose.inverse_transform_vector(normal);
         let aabb = collider.shape().compute_local_aabb();
         let top = pose.translation.dot(normal) + extent(aabb.center(), aabb.half_extents(), local);
-        let low = {
-            let aabb = source.compute_aabb();
-            aabb.center().dot(normal) - extent(Vector::ZERO, aabb.half_extents(), normal)
+        // The source's lowest point along the normal: exact for a convex
+        // shape (a capsule on a tilted platform), its bounding box's
+        // otherwise.
+        let pose = source.position();
+        let low = match source.shape().as_support_map() {
+            Some(support) => {
+                let deepest = support.local_support_point(pose.inverse_transform_vector(-normal));
+                pose.transform_point(deepest).dot(normal)
+            }
+            None => {
+                let aabb = source.compute_aabb();
+                aabb.center().dot(normal) - extent(Vector::ZERO, aabb.half_extents(), normal)
+            }
         };
         low < top - ONE_WAY_QUERY_SLACK
     }

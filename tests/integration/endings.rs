@@ -368,3 +368,22 @@ fn a_shooter_firing_every_few_steps_steps_as_a_project_removing_each_rule_itself
     assert!(ended > 40, "the project removed {ended} rules: the bullets got out");
     assert!(live <= 1, "every bullet but the newest is out: {live} entries left");
 }
+
+#[test]
+fn an_end_goes_with_its_record_when_its_node_takes_another_or_leaves() {
+    let mut bodies = RigidBodySet::new();
+    let [a, b, c, d, x] = [(); 5].map(|()| bodies.insert(RigidBodyBuilder::dynamic()));
+    let mut rules = CollisionRuleSet::default();
+    // `a` takes `c`'s record: `a`'s end stays with `a`'s old record (which
+    // nobody uses now), and never ends `c`'s timeless entry.
+    rules.set_specific_until(a, x, CollisionRule::NoPair, Until::steps(1));
+    rules.set_specific(c, x, CollisionRule::NoContacts);
+    rules.share_rules(c, a);
+    assert_eq!(rules.specific_until(a, x), None, "a reads c's timeless entry now");
+    assert_eq!(rules.specific(a, x), CollisionRule::NoContacts);
+    // `b` leaves a record `d` shares: `d` takes the end over.
+    rules.set_specific_until(b, x, CollisionRule::NoPair, Until::steps(3));
+    rules.share_rules(b, d);
+    rules.remove_node(b);
+    assert_eq!(rules.specific_until(d, x), Some(Until::steps(3)), "d carries the shared entry's end");
+}

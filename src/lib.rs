@@ -26,7 +26,8 @@ macro_rules! dimension {
 
         pub use hooks::{
             CalculatorContext, FullPass, ManifoldUpdate, PairCreated, PlanCause,
-            RecalculationPolicy, RuleChange, RuleEvent, RuleHooks, StepStats, WorldRef,
+            RecalculationPolicy, RuleChange, RuleEvent, RuleEventHandler, RuleHooks, StepStats,
+            WorldRef,
         };
         pub use model::{
             CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable, Node, OneWay, OneWayKind,

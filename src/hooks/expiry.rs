@@ -64,19 +64,46 @@ impl RuleHooks {
         self.pair_ends.get(&key).copied()
     }
 
-    /// How long a step is, for rules given for a time
-    /// ([`Until::seconds`]), when stepping a bare pipeline with
-    /// [`prepare`](Self::prepare): [`step`](Self::step) and
+    /// How much simulated time the steps between the next
+    /// [`prepare`](Self::prepare) and [`after_step`](Self::after_step)
+    /// take, for rules given for a time ([`Until::seconds`]), when
+    /// stepping a bare pipeline: [`step`](Self::step) and
     /// [`step_pipeline`](Self::step_pipeline) read the world's
-    /// `IntegrationParameters::dt` themselves. Starts at
-    /// `IntegrationParameters::default().dt`.
+    /// `IntegrationParameters::dt` themselves. Zero says that no step is
+    /// taken (a paused game): then no end is counted, neither steps nor
+    /// time nor apart. Starts at `IntegrationParameters::default().dt`, and
+    /// holds until set again.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks, Until};
+    ///
+    /// let (mut bodies, mut colliders) = (RigidBodySet::new(), ColliderSet::new());
+    /// let a = bodies.insert(RigidBodyBuilder::dynamic());
+    /// colliders.insert_with_parent(ColliderBuilder::ball(0.5), a, &mut bodies);
+    /// let b = bodies.insert(RigidBodyBuilder::dynamic());
+    /// colliders.insert_with_parent(ColliderBuilder::ball(0.5), b, &mut bodies);
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific_until(a, b, CollisionRule::NoContacts, Until::steps(2));
+    /// hooks.set_timestep(0.0);
+    /// for _ in 0..5 {
+    ///     hooks.prepare(&bodies, &mut colliders); // paused: nothing counts
+    /// }
+    /// assert_eq!(hooks.rules().specific_until(a, b).and_then(|u| u.steps_left()), Some(2));
+    /// hooks.set_timestep(1.0 / 60.0);
+    /// hooks.prepare(&bodies, &mut colliders);
+    /// assert_eq!(hooks.rules().specific_until(a, b).and_then(|u| u.steps_left()), Some(1));
+    /// ```
     ///
     /// # Panics
     ///
-    /// If `dt` is not more than zero.
+    /// If `dt` is negative or not a number.
     #[track_caller]
     pub fn set_timestep(&mut self, dt: Real) {
-        assert!(dt > 0.0, "RuleHooks::set_timestep({dt}): a step lasts more than zero seconds");
+        assert!(
+            dt >= 0.0,
+            "RuleHooks::set_timestep({dt}): the time the coming steps take, zero or more seconds"
+        );
         self.boundary.dt = dt;
     }
 
@@ -90,10 +117,11 @@ impl RuleHooks {
     /// order: the edits reach the plan and Rapier in the same order in
     /// every run.
     pub(super) fn end_rules(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) {
-        if !self.has_ends() {
+        let dt = self.boundary.dt;
+        if !self.has_ends() || dt == 0.0 {
+            // No step is taken: nothing moves, and no count runs.
             return;
         }
-        let dt = self.boundary.dt;
         let rules = &mut self.decide.rules;
         let mut entries: Vec<(Node, Node)> = rules.endings_mut().keys().copied().collect();
         entries.sort_unstable();
@@ -108,7 +136,7 @@ impl RuleHooks {
                 Due::Not => false,
                 Due::Now => true,
                 Due::IfApart => {
-                    let margin = until.margin_of_apart();
+                    let margin = until.margin();
                     let side1 = rules.colliders_under(node, bodies, colliders);
                     let side2 = rules.colliders_under(other, bodies, colliders);
                     apart(&side1, &side2, colliders, margin)
@@ -134,7 +162,7 @@ impl RuleHooks {
             let ends = match until.count_step(dt) {
                 Due::Not => false,
                 Due::Now => true,
-                Due::IfApart => apart(&[a], &[b], colliders, until.margin_of_apart()),
+                Due::IfApart => apart(&[a], &[b], colliders, until.margin()),
             };
             if ends {
                 self.pair_ends.remove(&key);

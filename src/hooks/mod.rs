@@ -50,7 +50,7 @@ pub(crate) use pair_state::{PairState, PairTable};
 pub(crate) use super::world::PairKey;
 pub use stats::{FullPass, PlanCause, StepStats};
 pub use live::WorldRef;
-pub use rule_events::{RuleChange, RuleEvent};
+pub use rule_events::{RuleChange, RuleEvent, RuleEventHandler};
 use roster::Roster;
 
 /// When live pairs are recalculated after the rules change.

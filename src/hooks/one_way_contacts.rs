@@ -79,8 +79,8 @@ impl RuleHooks {
             // second: out of the surface when it is the first.
             let out = if side == 0 { *rigid.normal } else { -*rigid.normal };
             let known = out.length_squared() > 0.1;
-            let mut ok = known && out.dot(normal) >= one_way.allowed_angle().cos();
-            if one_way.semantics() == OneWayKind::Godot {
+            let mut ok = known && out.dot(normal) >= one_way.max_angle().cos();
+            if one_way.kind() == OneWayKind::Godot {
                 // Godot lets through a body leaving along the normal.
                 ok &= arriving <= 0.0;
             }

@@ -26,8 +26,9 @@ use super::{PairKey, RecalculationPolicy, RuleHooks, WorldRef};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RuleEvent {
     /// The pair became live: Rapier made it, or its rule stopped being
-    /// `NoPair`.
-    PairCreated {
+    /// `NoPair`. (Not to be confused with the [`PairCreated`](super::PairCreated)
+    /// callback, which Rapier's first sighting of a hooked pair calls.)
+    PairStarted {
         /// The pair's first collider: the lower by `into_raw_parts`.
         collider1: ColliderHandle,
         /// The other.
@@ -79,12 +80,40 @@ pub enum RuleChange {
     BodyType,
 }
 
+/// Where rule events go as they happen, the push form of
+/// [`RuleHooks::drain_rule_events`], as Rapier's `EventHandler` is for its
+/// own events: given with [`RuleHooks::set_rule_event_handler`], called
+/// after each step with that step's events, in the order
+/// `drain_rule_events` would give them. A closure is a handler, and so is
+/// an [`std::sync::mpsc::Sender`] of [`RuleEvent`]s (what Rapier's
+/// `ChannelEventCollector` is for its events).
+pub trait RuleEventHandler: Send + Sync {
+    /// One event of the step that just ended.
+    fn handle_rule_event(&self, event: RuleEvent);
+}
+
+impl<F: Fn(RuleEvent) + Send + Sync> RuleEventHandler for F {
+    fn handle_rule_event(&self, event: RuleEvent) {
+        self(event);
+    }
+}
+
+impl RuleEventHandler for std::sync::mpsc::Sender<RuleEvent> {
+    /// Sends the event; a receiver that was dropped no longer listens, and
+    /// the event is dropped with it.
+    fn handle_rule_event(&self, event: RuleEvent) {
+        let _ = self.send(event);
+    }
+}
+
 /// The recording: the live pairs after the last step, the events not yet
-/// drained, and what this step did that explains a change.
-#[derive(Debug, Default)]
+/// drained (or the handler they go to), and what this step did that
+/// explains a change.
+#[derive(Default)]
 pub(super) struct Recording {
     live: HashMap<PairKey, (CollisionRule, BodyKinds)>,
     events: Vec<RuleEvent>,
+    handler: Option<Box<dyn RuleEventHandler>>,
     /// Pairs given or dropped an override since the last step.
     pub(super) overridden: HashSet<PairKey>,
     /// Pairs whose override ended since the last step.
@@ -102,7 +131,7 @@ impl RuleHooks {
     /// Starts (or stops) recording what changes for live pairs after each
     /// step, for [`drain_rule_events`](Self::drain_rule_events). Off by
     /// default, and free while off. The pairs live when recording starts
-    /// come as [`RuleEvent::PairCreated`] after the first step recorded.
+    /// come as [`RuleEvent::PairStarted`] after the first step recorded.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -125,7 +154,7 @@ impl RuleHooks {
     /// }
     /// // In the order of the handles' raw parts.
 /// let (c1, c2) = if g.into_raw_parts() < wall.into_raw_parts() { (g, wall) } else { (wall, g) };
-    /// assert_eq!(events[0], RuleEvent::PairCreated { collider1: c1, collider2: c2, rule: CollisionRule::NoResponse });
+    /// assert_eq!(events[0], RuleEvent::PairStarted { collider1: c1, collider2: c2, rule: CollisionRule::NoResponse });
     /// assert_eq!(events[1], RuleEvent::RuleChanged {
     ///     collider1: c1, collider2: c2,
     ///     from: CollisionRule::NoResponse, to: CollisionRule::Normal, cause: RuleChange::Expiry,
@@ -136,6 +165,43 @@ impl RuleHooks {
             (true, false) => self.recording = Some(Box::default()),
             (false, true) => self.recording = None,
             _ => {}
+        }
+    }
+
+    /// Starts recording rule events, as
+    /// [`record_rule_events(true)`](Self::record_rule_events), and sends
+    /// each to `handler` after the step that made it instead of keeping it
+    /// for [`drain_rule_events`](Self::drain_rule_events) (events already
+    /// kept stay there). `record_rule_events(false)` stops it and drops the
+    /// handler; calling this again replaces it.
+    ///
+    /// ```
+    /// use std::sync::mpsc;
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleEvent, RuleHooks, Until};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed());
+    /// world.insert_collider(ColliderBuilder::cuboid(0.5, 2.0, 2.0), Some(ground));
+    /// let ghost = world.insert_body(RigidBodyBuilder::dynamic().gravity_scale(0.0));
+    /// world.insert_collider(ColliderBuilder::ball(0.3), Some(ghost));
+    /// let mut hooks = RuleHooks::default();
+    /// let (sender, receiver) = mpsc::channel();
+    /// hooks.set_rule_event_handler(sender);
+    /// hooks.rules_mut().set_specific_until(ghost, ground, CollisionRule::NoResponse,
+    ///     Until::steps(5).even_if_overlapping());
+    /// for _ in 0..8 {
+    ///     hooks.step(&mut world);
+    /// }
+    /// let events: Vec<RuleEvent> = receiver.try_iter().collect();
+    /// assert!(matches!(events[0], RuleEvent::PairStarted { rule: CollisionRule::NoResponse, .. }));
+    /// assert!(matches!(events[1], RuleEvent::RuleChanged { to: CollisionRule::Normal, .. }));
+    /// assert_eq!(hooks.drain_rule_events().count(), 0, "nothing was kept");
+    /// ```
+    pub fn set_rule_event_handler(&mut self, handler: impl RuleEventHandler + 'static) {
+        self.record_rule_events(true);
+        if let Some(recording) = &mut self.recording {
+            recording.handler = Some(Box::new(handler));
         }
     }
 
@@ -190,7 +256,7 @@ impl RuleHooks {
             let (before, after) = (recording.live.get(&key), now.get(&key));
             let event = match (live(before), after.copied()) {
                 (None, Some((rule, _))) if rule != CollisionRule::NoPair => {
-                    RuleEvent::PairCreated { collider1, collider2, rule }
+                    RuleEvent::PairStarted { collider1, collider2, rule }
                 }
                 (Some((from, was)), Some((to, kinds))) if from != to => RuleEvent::RuleChanged {
                     collider1,
@@ -213,7 +279,10 @@ impl RuleHooks {
                 (Some((rule, _)), None) => RuleEvent::PairEnded { collider1, collider2, rule },
                 _ => continue,
             };
-            recording.events.push(event);
+            match &recording.handler {
+                Some(handler) => handler.handle_rule_event(event),
+                None => recording.events.push(event),
+            }
         }
         recording.live = now;
         recording.overridden.clear();

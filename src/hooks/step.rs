@@ -223,6 +223,11 @@ impl RuleHooks {
     /// [`wake_edited`](Self::wake_edited) or
     /// [`freeze_manifolds`](Self::freeze_manifolds) was left out when the
     /// edits before it needed them.
+    ///
+    /// Without the joint sets, rule events (if recorded) count a pair of
+    /// bodies that a joint with contacts disabled links as live; a world
+    /// with such joints calls
+    /// [`after_step_with_joints`](Self::after_step_with_joints).
     pub fn after_step(
         &mut self,
         narrow_phase: &NarrowPhase,
@@ -231,5 +236,54 @@ impl RuleHooks {
     ) {
         self.finish_step(narrow_phase, bodies, colliders, None, false);
         self.record_step(WorldRef::new(narrow_phase, bodies, colliders));
+    }
+
+    /// [`after_step`](Self::after_step), reading the joint sets as Rapier
+    /// does: a pair of bodies that a joint with contacts disabled links is
+    /// not live, for the pair table and for rule events alike.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleEvent, RuleHooks};
+    ///
+    /// let mut w = PhysicsWorld::new();
+    /// let floor = w.insert_body(RigidBodyBuilder::fixed());
+    /// w.insert_collider(ColliderBuilder::cuboid(5.0, 0.5, 5.0), Some(floor));
+    /// let arm = w.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.9, 0.0)));
+    /// w.insert_collider(ColliderBuilder::ball(0.5), Some(arm));
+    /// // A hinge with contacts off holds the arm in the floor.
+    /// let hinge = RevoluteJointBuilder::new(Vector::Z).contacts_enabled(false);
+    /// w.impulse_joints.insert(floor, arm, hinge, true);
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific(arm, floor, CollisionRule::NoResponse);
+    /// hooks.record_rule_events(true);
+    /// for _ in 0..10 {
+    ///     hooks.prepare(&w.bodies, &mut w.colliders);
+    ///     hooks.freeze_manifolds(&w.narrow_phase);
+    ///     hooks.wake_edited(&mut w.islands, &mut w.bodies);
+    ///     w.step_with_events(&hooks, &());
+    ///     hooks.after_step_with_joints(
+    ///         &w.narrow_phase, &w.bodies, &w.colliders, &w.impulse_joints, &w.multibody_joints,
+    ///     );
+    /// }
+    /// // The joint keeps the pair from being live: no event names it.
+    /// assert!(hooks.drain_rule_events().next().is_none());
+    /// ```
+    pub fn after_step_with_joints(
+        &mut self,
+        narrow_phase: &NarrowPhase,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        impulse_joints: &ImpulseJointSet,
+        multibody_joints: &MultibodyJointSet,
+    ) {
+        let joints = Joints {
+            impulse: impulse_joints,
+            multibody: multibody_joints,
+        };
+        self.finish_step(narrow_phase, bodies, colliders, Some(joints), false);
+        self.record_step(
+            WorldRef::new(narrow_phase, bodies, colliders).with_joints(impulse_joints, multibody_joints),
+        );
     }
 }

@@ -30,9 +30,9 @@ use super::super::{CollisionRule, CollisionRuleSet, Node};
 /// let shooter = bodies.insert(RigidBodyBuilder::dynamic());
 /// let bullet = bodies.insert(RigidBodyBuilder::dynamic());
 /// let mut rules = CollisionRuleSet::default();
-/// rules.set_specific_until(bullet, shooter, CollisionRule::NoContacts, Until::apart().margin(0.05));
+/// rules.set_specific_until(bullet, shooter, CollisionRule::NoContacts, Until::apart().with_margin(0.05));
 /// assert_eq!(rules.specific(bullet, shooter), CollisionRule::NoContacts);
-/// assert_eq!(rules.specific_until(bullet, shooter), Some(Until::apart().margin(0.05)));
+/// assert_eq!(rules.specific_until(bullet, shooter), Some(Until::apart().with_margin(0.05)));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -111,10 +111,10 @@ impl Until {
     /// If `margin` is negative or not a number.
     #[must_use]
     #[track_caller]
-    pub fn margin(self, margin: Real) -> Until {
+    pub fn with_margin(self, margin: Real) -> Until {
         assert!(
             margin >= 0.0,
-            "Until::margin({margin}): the margin must be zero or more (a distance)"
+            "Until::with_margin({margin}): the margin must be zero or more (a distance)"
         );
         Until { margin, ..self }
     }
@@ -140,10 +140,17 @@ impl Until {
         }
     }
 
-    /// The margin of the test for apart.
+    /// The margin of the test for apart ([`with_margin`](Self::with_margin)).
     #[must_use]
-    pub fn margin_of_apart(&self) -> Real {
+    pub fn margin(&self) -> Real {
         self.margin
+    }
+
+    /// Whether a count that runs out while the sides overlap ends the rule
+    /// anyway ([`even_if_overlapping`](Self::even_if_overlapping)).
+    #[must_use]
+    pub fn ends_even_if_overlapping(&self) -> bool {
+        !self.wait_apart
     }
 
     /// The steps left, for a rule given for a number of steps.

@@ -32,9 +32,9 @@ pub enum OneWayKind {
 /// use rapier3d::prelude::*;
 /// use rapier_collision_rules::{OneWay, OneWayKind};
 ///
-/// let up = OneWay::new(Vector::Y).max_angle(0.5).kind(OneWayKind::Godot);
+/// let up = OneWay::new(Vector::Y).with_max_angle(0.5).with_kind(OneWayKind::Godot);
 /// assert_eq!(up.normal(), Vector::Y);
-/// assert_eq!(up.allowed_angle(), 0.5);
+/// assert_eq!(up.max_angle(), 0.5);
 /// assert_eq!(OneWay::new(Vector::Y * 3.0).normal(), Vector::Y, "the normal is normalized");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -76,17 +76,17 @@ impl OneWay {
     /// If `angle` is not between 0 and pi.
     #[must_use]
     #[track_caller]
-    pub fn max_angle(self, angle: Real) -> OneWay {
+    pub fn with_max_angle(self, angle: Real) -> OneWay {
         assert!(
             (0.0..=std::f32::consts::PI).contains(&angle),
-            "OneWay::max_angle({angle}): an angle between 0 and pi radians"
+            "OneWay::with_max_angle({angle}): an angle between 0 and pi radians"
         );
         OneWay { angle, ..self }
     }
 
     /// The semantics.
     #[must_use]
-    pub fn kind(self, kind: OneWayKind) -> OneWay {
+    pub fn with_kind(self, kind: OneWayKind) -> OneWay {
         OneWay { kind, ..self }
     }
 
@@ -96,15 +96,15 @@ impl OneWay {
         self.normal
     }
 
-    /// The largest blocking angle, in radians.
+    /// The largest blocking angle, in radians ([`with_max_angle`](Self::with_max_angle)).
     #[must_use]
-    pub fn allowed_angle(&self) -> Real {
+    pub fn max_angle(&self) -> Real {
         self.angle
     }
 
-    /// The semantics.
+    /// The semantics ([`with_kind`](Self::with_kind)).
     #[must_use]
-    pub fn semantics(&self) -> OneWayKind {
+    pub fn kind(&self) -> OneWayKind {
         self.kind
     }
 

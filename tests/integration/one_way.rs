@@ -47,7 +47,7 @@ fn a_rotated_one_way_platform_lets_a_box_up_through_and_holds_it_on_top_in_both_
         if let Some(kind) = kind {
             hooks
                 .rules_mut()
-                .set_one_way(body, Some(OneWay::new(at(0.0, 1.0)).kind(kind)));
+                .set_one_way(body, Some(OneWay::new(at(0.0, 1.0)).with_kind(kind)));
         }
         let mut highest = f32::MIN;
         for _ in 0..240 {
@@ -84,7 +84,7 @@ fn godot_lets_through_a_body_moving_out_along_the_normal_where_rapier_pushes_it(
         let (body, _) = platform(&mut scene, 0.0, 0.5);
         let rising = thrown(&mut scene, 0.0, 3.4, 0.5);
         let mut hooks = RuleHooks::default();
-        hooks.rules_mut().set_one_way(body, Some(OneWay::new(at(0.0, 1.0)).kind(kind)));
+        hooks.rules_mut().set_one_way(body, Some(OneWay::new(at(0.0, 1.0)).with_kind(kind)));
         let mut fastest = 0.0f32;
         for _ in 0..30 {
             let before = scene.y(rising);
@@ -140,7 +140,7 @@ fn a_one_way_setting_follows_the_parent_map_and_the_nearest_wins() {
     let up = OneWay::new(at(0.0, 1.0));
     rules.set_one_way(lift, Some(up));
     assert_eq!(rules.one_way_of(&bodies, &colliders, c), Some((Node::Body(lift), up)));
-    let side = OneWay::new(at(1.0, 0.0)).kind(OneWayKind::Godot);
+    let side = OneWay::new(at(1.0, 0.0)).with_kind(OneWayKind::Godot);
     rules.set_one_way(c, Some(side));
     assert_eq!(rules.one_way_of(&bodies, &colliders, c), Some((Node::Collider(c), side)));
     rules.set_one_way(c, None);

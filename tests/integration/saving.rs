@@ -166,7 +166,7 @@ fn rules_with_an_end_are_saved_with_what_is_left_and_end_after_loading_as_they_w
     );
     hooks
         .rules_mut()
-        .set_specific_until(ground, cube, NoResponse, Until::apart().margin(0.5));
+        .set_specific_until(ground, cube, NoResponse, Until::apart().with_margin(0.5));
     for _ in 0..4 {
         hooks.step(&mut world);
     }
@@ -177,7 +177,7 @@ fn rules_with_an_end_are_saved_with_what_is_left_and_end_after_loading_as_they_w
     );
     assert_eq!(
         loaded_rules.specific_until(ground, cube),
-        Some(Until::apart().margin(0.5))
+        Some(Until::apart().with_margin(0.5))
     );
     let mut loaded = RuleHooks::new(loaded_rules);
     for step in 0..30 {

@@ -128,8 +128,8 @@ pub const GROUPS: usize = 4;
 pub fn one_ways() -> [OneWay; 3] {
     [
         OneWay::new(at(0.0, 1.0)),
-        OneWay::new(at(0.0, 1.0)).kind(OneWayKind::Godot),
-        OneWay::new(at(1.0, 0.0)).max_angle(1.0),
+        OneWay::new(at(0.0, 1.0)).with_kind(OneWayKind::Godot),
+        OneWay::new(at(1.0, 0.0)).with_max_angle(1.0),
     ]
 }
 
@@ -139,7 +139,7 @@ pub fn one_ways() -> [OneWay; 3] {
 pub fn ends() -> [Until; 6] {
     [
         Until::apart(),
-        Until::apart().margin(0.1),
+        Until::apart().with_margin(0.1),
         Until::steps(0),
         Until::steps(3),
         Until::seconds(0.05),
@@ -752,7 +752,7 @@ impl Run {
         let mut last = None;
         for event in events {
             let (key, told) = match event {
-                RuleEvent::PairCreated { collider1, collider2, rule } => {
+                RuleEvent::PairStarted { collider1, collider2, rule } => {
                     let key = (collider1.into_raw_parts(), collider2.into_raw_parts());
                     assert!(!replayed.contains_key(&key), "{event:?}: the pair was live");
                     assert_ne!(rule, CollisionRule::NoPair, "{event:?}");

@@ -138,7 +138,7 @@ impl CollisionRulesPlugin {
     /// app.update();
     /// let messages = app.world().resource::<Messages<CollisionRuleEvent>>();
     /// let created = messages.get_cursor().read(messages)
-    ///     .any(|m| matches!(m.event, RuleEvent::PairCreated { rule: CollisionRule::NoResponse, .. })
+    ///     .any(|m| matches!(m.event, RuleEvent::PairStarted { rule: CollisionRule::NoResponse, .. })
     ///         && [m.entity1, m.entity2].contains(&ball) && [m.entity1, m.entity2].contains(&floor));
     /// assert!(created, "the ball's pair with the floor came as a message");
     /// ```

@@ -48,7 +48,7 @@ pub(crate) fn send_rule_events(
         let rules = &mut *rules;
         let known = &mut rules.event_entities.0;
         for event in rules.hooks.drain_rule_events() {
-            let (RuleEvent::PairCreated {
+            let (RuleEvent::PairStarted {
                 collider1,
                 collider2,
                 ..

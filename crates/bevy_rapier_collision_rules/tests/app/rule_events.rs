@@ -46,7 +46,7 @@ fn a_pair_made_changed_and_ended_comes_as_messages_naming_its_entities() {
     assert!(
         matches!(
             events[..],
-            [RuleEvent::PairCreated {
+            [RuleEvent::PairStarted {
                 rule: CollisionRule::Normal,
                 ..
             }]

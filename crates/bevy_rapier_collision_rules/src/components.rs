@@ -1,6 +1,6 @@
 //! The rules an entity carries, as components (`docs/bevy.md`).
 
-use crate::collision_rules::{CollisionGroup, CollisionRule, OneWay};
+use crate::collision_rules::{CollisionGroup, CollisionRule, OneWay, Until};
 use bevy::prelude::*;
 
 /// The entity's collision group, from the [`RuleTable`](super::RuleTable)
@@ -46,21 +46,39 @@ pub struct OneWaySurface(pub OneWay);
 /// takes effect once it has one. Removing the component, or an entry,
 /// clears what it said.
 ///
+/// An entry can have an end ([`Until`]): the hooks count it from the frame
+/// it is applied in, and when it ends the plugin removes it from the
+/// component too, in the frame it ends (`docs/bevy.md`, "Rules with an
+/// end"). Changing the component's other entries does not restart it;
+/// setting the entry again does.
+///
 /// ```
 /// use bevy::prelude::*;
-/// use bevy_rapier_collision_rules::{CollisionRule, SpecificRules};
+/// use bevy_rapier_collision_rules::{CollisionRule, SpecificRules, Until};
 ///
 /// let mut world = World::new();
-/// let wall = world.spawn_empty().id();
-/// let mut rules = SpecificRules::new().with(wall, CollisionRule::NoResponse);
+/// let (wall, shooter) = (world.spawn_empty().id(), world.spawn_empty().id());
+/// let mut rules = SpecificRules::new()
+///     .with(wall, CollisionRule::NoResponse)
+///     .with_until(shooter, CollisionRule::NoContacts, Until::apart());
 /// assert_eq!(rules.get(wall), CollisionRule::NoResponse);
+/// assert_eq!(rules.until(shooter), Some(Until::apart()));
+/// assert_eq!(rules.until(wall), None, "an entry without an end");
 /// rules.set(wall, CollisionRule::Defer);
 /// assert_eq!(rules.get(wall), CollisionRule::Defer, "Defer removes the entry");
-/// assert!(rules.is_empty());
+/// assert_eq!(rules.iter().count(), 1);
 /// ```
-#[derive(Component, Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Component, Clone, Debug, Default, PartialEq)]
 pub struct SpecificRules {
-    entries: Vec<(Entity, CollisionRule)>,
+    entries: Vec<SpecificEntry>,
+}
+
+/// One entry of [`SpecificRules`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SpecificEntry {
+    pub(crate) other: Entity,
+    pub(crate) rule: CollisionRule,
+    pub(crate) until: Option<Until>,
 }
 
 impl SpecificRules {
@@ -77,30 +95,63 @@ impl SpecificRules {
         self
     }
 
-    /// Sets the rule about `other`; `Defer` removes the entry.
+    /// These rules, with `rule` about `other` until `until` comes.
+    #[must_use]
+    pub fn with_until(mut self, other: Entity, rule: CollisionRule, until: Until) -> SpecificRules {
+        self.set_until(other, rule, until);
+        self
+    }
+
+    /// Sets the rule about `other`, without an end; `Defer` removes the
+    /// entry.
     pub fn set(&mut self, other: Entity, rule: CollisionRule) {
-        let at = self.entries.iter().position(|&(e, _)| e == other);
+        self.put(other, rule, None);
+    }
+
+    /// Sets the rule about `other` until `until` comes (as
+    /// `CollisionRuleSet::set_specific_until`); `Defer` removes the entry.
+    pub fn set_until(&mut self, other: Entity, rule: CollisionRule, until: Until) {
+        self.put(other, rule, Some(until));
+    }
+
+    fn put(&mut self, other: Entity, rule: CollisionRule, until: Option<Until>) {
+        let at = self.entries.iter().position(|e| e.other == other);
+        let entry = SpecificEntry { other, rule, until };
         match (at, rule) {
             (Some(i), CollisionRule::Defer) => {
                 self.entries.swap_remove(i);
             }
-            (Some(i), _) => self.entries[i].1 = rule,
+            (Some(i), _) => self.entries[i] = entry,
             (None, CollisionRule::Defer) => {}
-            (None, _) => self.entries.push((other, rule)),
+            (None, _) => self.entries.push(entry),
         }
     }
 
     /// The rule about `other`, `Defer` if none.
     #[must_use]
     pub fn get(&self, other: Entity) -> CollisionRule {
-        self.entries
-            .iter()
-            .find(|&&(e, _)| e == other)
-            .map_or(CollisionRule::Defer, |&(_, rule)| rule)
+        self.entry(other).map_or(CollisionRule::Defer, |e| e.rule)
     }
 
-    /// Every entry, in no particular order.
+    /// The end of the entry about `other` as it was given (the count
+    /// itself runs in the rule set: `CollisionRuleSet::specific_until`),
+    /// `None` for an entry without an end or no entry.
+    #[must_use]
+    pub fn until(&self, other: Entity) -> Option<Until> {
+        self.entry(other).and_then(|e| e.until)
+    }
+
+    fn entry(&self, other: Entity) -> Option<&SpecificEntry> {
+        self.entries.iter().find(|e| e.other == other)
+    }
+
+    /// Every entry (the entity named and the rule), in no particular order.
     pub fn iter(&self) -> impl Iterator<Item = (Entity, CollisionRule)> + '_ {
+        self.entries.iter().map(|e| (e.other, e.rule))
+    }
+
+    /// Every entry with its end, for the plugin.
+    pub(crate) fn entries(&self) -> impl Iterator<Item = SpecificEntry> + '_ {
         self.entries.iter().copied()
     }
 

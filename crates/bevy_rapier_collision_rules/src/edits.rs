@@ -12,7 +12,8 @@ use bevy_rapier::prelude::{
     SoftBodyTearEvent,
 };
 
-use super::ledger::{Applied, Ledger, Place};
+use super::components::SpecificEntry;
+use super::ledger::{Applied, AppliedEntry, Ledger, Place};
 use super::{CollisionRules, OneWaySurface, PersonalRule, RuleGroup, SpecificRules};
 
 /// An entity's physics handles: its rigid body, soft body, collider, context.
@@ -163,10 +164,13 @@ pub(crate) fn name_tear_pieces(
             let Ok(mut rules) = specific.get_mut(by) else {
                 continue;
             };
-            let rule = rules.get(tear.soft_body);
+            let (rule, until) = (rules.get(tear.soft_body), rules.until(tear.soft_body));
             for piece in tear.pieces.iter().map(|p| p.soft_body) {
                 if rule != CollisionRule::Defer && rules.get(piece) == CollisionRule::Defer {
-                    rules.set(piece, rule);
+                    match until {
+                        Some(until) => rules.set_until(piece, rule, until),
+                        None => rules.set(piece, rule),
+                    }
                 }
             }
         }
@@ -231,11 +235,11 @@ fn follow_tears(ledger: &mut Ledger, objects: &Objects, softs: &Query<Entity, Ru
         };
         let held = applied.clone();
         if !ledger.applied.contains_key(&tear.piece) {
-            for &(target, node, _) in &held.specific {
-                let at = objects.place_of(target).map(|(c, _)| (c, node));
-                ledger.name(tear.piece, target, at);
+            for entry in &held.specific {
+                let at = objects.place_of(entry.target).map(|(c, _)| (c, entry.node));
+                ledger.name(tear.piece, entry.target, at);
             }
-            ledger.applied.insert(tear.piece, held);
+            ledger.note_applied(tear.piece, held);
         }
         if let Some(applied) = ledger.applied.get_mut(&soft) {
             applied.place = tear.now;
@@ -256,9 +260,13 @@ fn follow_tears(ledger: &mut Ledger, objects: &Objects, softs: &Query<Entity, Ru
                 continue;
             };
             let mut pieces = Vec::new();
-            for entry in applied.specific.iter_mut().filter(|e| e.0 == target) {
-                entry.1 = tear.now.1;
-                pieces.push((tear.piece, at.1, entry.2));
+            for entry in applied.specific.iter_mut().filter(|e| e.target == target) {
+                entry.node = tear.now.1;
+                pieces.push(AppliedEntry {
+                    target: tear.piece,
+                    node: at.1,
+                    ..*entry
+                });
             }
             applied.specific.extend(pieces);
             ledger.name(entity, tear.piece, Some(at));
@@ -330,7 +338,12 @@ fn apply(
         set.set_one_way(node, one_way);
     }
     let mut entries = Vec::new();
-    for (target, rule) in specific.into_iter().flat_map(SpecificRules::iter) {
+    for SpecificEntry {
+        other: target,
+        rule,
+        until,
+    } in specific.into_iter().flat_map(SpecificRules::entries)
+    {
         if !objects.exists(target) {
             // Despawned: its entries went with it.
             continue;
@@ -338,7 +351,12 @@ fn apply(
         let at = objects.place_of(target);
         ledger.name(entity, target, at);
         match at {
-            Some((c, target_node)) if c == context => entries.push((target, target_node, rule)),
+            Some((c, node)) if c == context => entries.push(AppliedEntry {
+                target,
+                node,
+                rule,
+                until,
+            }),
             // Another context's object means nothing here.
             Some(_) => {}
             None => {
@@ -350,24 +368,27 @@ fn apply(
     // ([`follow_tears`]) stays until the tear's message names the piece in
     // the components: a cut made in `Update` sends it only with the next
     // writeback, and the piece steps before.
-    for &(target, target_node, rule) in &before.specific {
-        let named = entries.iter().any(|&(t, _, _)| t == target);
-        if !named && objects.awaits_its_tear_message(target) {
-            ledger.name(entity, target, objects.place_of(target));
-            entries.push((target, target_node, rule));
+    for &entry in &before.specific {
+        let named = entries.iter().any(|e| e.target == entry.target);
+        if !named && objects.awaits_its_tear_message(entry.target) {
+            ledger.name(entity, entry.target, objects.place_of(entry.target));
+            entries.push(entry);
         }
     }
-    for &(_, target_node, _) in &before.specific {
-        if !entries.iter().any(|&(_, n, _)| n == target_node) {
-            set.remove_specific(node, target_node);
+    for old in &before.specific {
+        if !entries.iter().any(|e| e.node == old.node) {
+            set.remove_specific(node, old.node);
         }
     }
     for &entry in &entries {
         if !before.specific.contains(&entry) {
-            set.set_specific(node, entry.1, entry.2);
+            match entry.until {
+                Some(until) => set.set_specific_until(node, entry.node, entry.rule, until),
+                None => set.set_specific(node, entry.node, entry.rule),
+            }
         }
     }
-    ledger.applied.insert(
+    ledger.note_applied(
         entity,
         Applied {
             place,
@@ -379,13 +400,61 @@ fn apply(
     );
 }
 
+/// Entries with an end that the hooks ended this frame leave their
+/// component and the book too, so that the component says what holds
+/// (`docs/bevy.md`, "Rules with an end"). Only entities given an entry
+/// with an end are looked at.
+pub(crate) fn drop_ended_entries(
+    mut ledger: ResMut<Ledger>,
+    contexts: Query<&CollisionRules>,
+    mut specific: Query<&mut SpecificRules>,
+) {
+    if ledger.ending.is_empty() {
+        return;
+    }
+    let ledger = &mut *ledger;
+    let mut ending: Vec<Entity> = ledger.ending.iter().copied().collect();
+    ending.sort_unstable();
+    for entity in ending {
+        let Some(applied) = ledger.applied.get_mut(&entity) else {
+            ledger.ending.remove(&entity);
+            continue;
+        };
+        let Ok(rules) = contexts.get(applied.place.0) else {
+            continue;
+        };
+        let (set, node) = (rules.rules(), applied.place.1);
+        let mut ended = Vec::new();
+        applied.specific.retain(|entry| {
+            let gone = entry.until.is_some() && set.specific_until(node, entry.node).is_none();
+            if gone {
+                ended.push(*entry);
+            }
+            !gone
+        });
+        if !applied.specific.iter().any(|e| e.until.is_some()) {
+            ledger.ending.remove(&entity);
+        }
+        for entry in ended {
+            ledger.unname_target(entity, entry.target);
+            if let Ok(mut component) = specific.get_mut(entity) {
+                // Unless the project has set the entry again since.
+                let given = (component.get(entry.target), component.until(entry.target));
+                if given == (entry.rule, entry.until) {
+                    component.set(entry.target, CollisionRule::Defer);
+                }
+            }
+        }
+    }
+}
+
 /// Takes back what `applied` gave.
 fn clear(set: &mut CollisionRuleSet, applied: &Applied) {
     let node = applied.place.1;
     set.set_group(node, None);
     set.set_personal(node, CollisionRule::Defer);
     set.set_one_way(node, None);
-    for &(_, target, _) in &applied.specific {
-        set.remove_specific(node, target);
+    for entry in &applied.specific {
+        set.remove_specific(node, entry.node);
     }
 }

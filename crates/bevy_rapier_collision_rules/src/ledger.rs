@@ -4,7 +4,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use crate::collision_rules::{CollisionGroup, CollisionRule, Node, OneWay};
+use crate::collision_rules::{CollisionGroup, CollisionRule, Node, OneWay, Until};
 use bevy::prelude::*;
 
 /// Where an entity's rules live: its context entity and its node there.
@@ -17,8 +17,19 @@ pub(crate) struct Applied {
     pub(crate) group: Option<CollisionGroup>,
     pub(crate) personal: CollisionRule,
     pub(crate) one_way: Option<OneWay>,
-    /// Each entry: the entity named, its node when the entry was set, the rule.
-    pub(crate) specific: Vec<(Entity, Node, CollisionRule)>,
+    pub(crate) specific: Vec<AppliedEntry>,
+}
+
+/// A specific entry as applied.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct AppliedEntry {
+    /// The entity named.
+    pub(crate) target: Entity,
+    /// Its node when the entry was set.
+    pub(crate) node: Node,
+    pub(crate) rule: CollisionRule,
+    /// The end as the component gave it (the count runs in the rule set).
+    pub(crate) until: Option<Until>,
 }
 
 /// An entity that specific rules name.
@@ -47,19 +58,35 @@ pub(crate) struct Ledger {
     pub(crate) settings_removed: Vec<Entity>,
     /// Contexts that dropped their own table.
     pub(crate) table_dropped: Vec<Entity>,
+    /// Entities whose applied entries may include one with an end (some
+    /// may have ended or gone since): looked at after each step.
+    pub(crate) ending: HashSet<Entity>,
 }
 
 impl Ledger {
     /// Forgets that `entity`'s entries name their targets.
     pub(crate) fn unname(&mut self, entity: Entity, applied: &Applied) {
-        for &(target, _, _) in &applied.specific {
-            if let Some(named) = self.named.get_mut(&target) {
-                named.by.remove(&entity);
-                if named.by.is_empty() {
-                    self.named.remove(&target);
-                }
+        for entry in &applied.specific {
+            self.unname_target(entity, entry.target);
+        }
+    }
+
+    /// Forgets that an entry of `entity` names `target`.
+    pub(crate) fn unname_target(&mut self, entity: Entity, target: Entity) {
+        if let Some(named) = self.named.get_mut(&target) {
+            named.by.remove(&entity);
+            if named.by.is_empty() {
+                self.named.remove(&target);
             }
         }
+    }
+
+    /// Notes `applied` as what `entity`'s components gave now.
+    pub(crate) fn note_applied(&mut self, entity: Entity, applied: Applied) {
+        if applied.specific.iter().any(|e| e.until.is_some()) {
+            self.ending.insert(entity);
+        }
+        self.applied.insert(entity, applied);
     }
 
     /// Notes that `entity`'s entries name their targets, each at `place`.

@@ -104,8 +104,8 @@ pub use table::{ContextRuleTable, RuleTable};
 pub use collision_rules::{
     CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
     GroupTable, ManifoldUpdate, Node, OneWay, OneWayKind, PairCreated, Problem,
-    RecalculationPolicy, RuleChange, RuleError, RuleEvent, RuleHooks, Stage, StepStats, Until,
-    WorldRef,
+    RecalculationPolicy, RuleChange, RuleError, RuleEvent, RuleEventHandler, RuleHooks, Stage,
+    StepStats, Until, WorldRef,
 };
 /// The main crate, for what is not re-exported here (its dimension's
 /// module, its Rapier).

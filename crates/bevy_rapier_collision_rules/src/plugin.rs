@@ -9,7 +9,7 @@ use bevy_rapier::prelude::{
     ActiveCollisionTypes, ActiveHooks, CollisionGroups, RapierRigidBodyHandle, SolverGroups,
 };
 
-use super::edits::{apply_rule_components, name_tear_pieces};
+use super::edits::{apply_rule_components, drop_ended_entries, name_tear_pieces};
 use super::hierarchy::follow_hierarchy;
 use super::ledger::Ledger;
 use super::misuse::check_hooks;
@@ -193,7 +193,12 @@ impl Plugin for CollisionRulesPlugin {
                 .run_if(run_once)
                 .in_set(RulesSystems::Prepare),
         );
-        app.add_systems(self.schedule, finish_contexts.in_set(RulesSystems::Finish));
+        app.add_systems(
+            self.schedule,
+            (finish_contexts, drop_ended_entries)
+                .chain()
+                .in_set(RulesSystems::Finish),
+        );
         if self.rule_events {
             app.add_message::<CollisionRuleEvent>()
                 .add_systems(

@@ -5,8 +5,10 @@
 
 use bevy::prelude::*;
 use bevy_rapier::plugin::context::{
-    RapierContextColliders, RapierContextSimulation, RapierRigidBodySet,
+    RapierContextColliders, RapierContextJoints, RapierContextSimulation, RapierRigidBodySet,
+    SimulationToRenderTime,
 };
+use bevy_rapier::plugin::{RapierConfiguration, TimestepMode};
 
 use super::CollisionRules;
 
@@ -22,23 +24,84 @@ pub(crate) fn follow_soft_bodies(mut contexts: Query<(&mut CollisionRules, &Rapi
     }
 }
 
+/// The simulated time bevy_rapier's steps will take in this frame, as its
+/// `step_simulation` computes it from the timestep mode: zero when it takes
+/// no step (the pipeline is off, a zero time scale, the first frame of a
+/// variable step, an interpolated simulation ahead of the clock). Rules
+/// with an end count it (`docs/bevy.md`, "Rules with an end").
+fn frame_time(
+    mode: TimestepMode,
+    delta: f32,
+    active: bool,
+    ahead: Option<&SimulationToRenderTime>,
+) -> f32 {
+    if !active {
+        return 0.0;
+    }
+    let (time, substeps) = match mode {
+        TimestepMode::Fixed { dt, substeps } => (dt, substeps),
+        TimestepMode::Variable {
+            max_dt,
+            time_scale,
+            substeps,
+        } => ((delta * time_scale).min(max_dt), substeps),
+        TimestepMode::Interpolated {
+            dt,
+            time_scale,
+            substeps,
+        } => {
+            if dt <= 0.0 {
+                return 0.0;
+            }
+            // bevy_rapier's loop: a step of `dt` while the simulation is
+            // behind the clock.
+            let mut diff = ahead.map_or(0.0, |a| a.diff) + delta;
+            let mut steps = 0u32;
+            while diff > 0.0 {
+                steps += 1;
+                diff -= dt;
+            }
+            (steps as f32 * dt * time_scale, substeps)
+        }
+    };
+    if substeps == 0 || time / (substeps as f32) <= 0.0 {
+        0.0
+    } else {
+        time
+    }
+}
+
+/// What `prepare_contexts` reads and writes of a context.
+type Prepared = (
+    &'static mut CollisionRules,
+    &'static mut RapierContextSimulation,
+    &'static mut RapierContextColliders,
+    &'static mut RapierRigidBodySet,
+    &'static RapierConfiguration,
+    Option<&'static SimulationToRenderTime>,
+);
+
 /// Before the step: plans the colliders' flags and groups, recalculates
 /// the live pairs the edits reach, and wakes their bodies.
 pub(crate) fn prepare_contexts(
-    mut contexts: Query<(
-        &mut CollisionRules,
-        &mut RapierContextSimulation,
-        &mut RapierContextColliders,
-        &mut RapierRigidBodySet,
-    )>,
+    mut contexts: Query<Prepared>,
+    mode: Res<TimestepMode>,
+    time: Res<Time>,
 ) {
-    for (mut rules, mut simulation, mut colliders, mut bodies) in &mut contexts {
+    for (mut rules, mut simulation, mut colliders, mut bodies, config, ahead) in &mut contexts {
         let rules = &mut *rules;
+        let frame = frame_time(
+            *mode,
+            time.delta_secs(),
+            config.physics_pipeline_active,
+            ahead,
+        );
         let simulation = simulation.bypass_change_detection();
         let colliders = &mut colliders.bypass_change_detection().colliders;
         let set = bodies.bypass_change_detection();
         rules.colliders_at = std::ptr::from_ref(colliders) as usize;
         let hooks = rules.hooks_mut();
+        hooks.set_timestep(frame);
         // Pieces of tears take their source's rules, cluster proxies their
         // soft body's root as parent (`docs/semantics.md`, "Soft bodies").
         hooks.follow_soft_bodies(&set.soft_bodies, &set.bodies);
@@ -57,13 +120,16 @@ pub(crate) fn finish_contexts(
         &RapierContextSimulation,
         &RapierContextColliders,
         &RapierRigidBodySet,
+        &RapierContextJoints,
     )>,
 ) {
-    for (mut rules, simulation, colliders, bodies) in &mut contexts {
-        rules.hooks_mut().after_step(
+    for (mut rules, simulation, colliders, bodies, joints) in &mut contexts {
+        rules.hooks_mut().after_step_with_joints(
             &simulation.narrow_phase,
             &bodies.bodies,
             &colliders.colliders,
+            &joints.impulse_joints,
+            &joints.multibody_joints,
         );
     }
 }

@@ -18,6 +18,7 @@ mod dimension;
 mod contexts;
 mod edits;
 mod elevator;
+mod endings;
 mod hierarchy;
 mod one_way;
 mod outcomes;

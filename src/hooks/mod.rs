@@ -160,6 +160,10 @@ pub struct RuleHooks {
     /// The rule events, while a game asks for them (see
     /// [`RuleHooks::record_rule_events`]).
     recording: Option<Box<rule_events::Recording>>,
+    /// The one-way standings of the manifolds of pairs made of parts,
+    /// which Rapier cannot keep in their `user_data` (see
+    /// `one_way_contacts.rs`).
+    one_way_parts: Mutex<one_way_contacts::PartStandings>,
 }
 
 /// What decides each pair: the rules, the policy, the code a project
@@ -313,6 +317,7 @@ impl RuleHooks {
             soft: soft_bodies::SoftBodies::default(),
             pair_ends: HashMap::new(),
             recording: None,
+            one_way_parts: Mutex::default(),
         }
     }
 

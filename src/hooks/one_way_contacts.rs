@@ -6,9 +6,21 @@
 
 use super::super::rapier::prelude::*;
 
+use std::sync::PoisonError;
+
+use hashbrown::HashMap;
+
 use super::super::OneWayKind;
 use super::super::model::body_of;
-use super::RuleHooks;
+use super::super::world::made_of_parts;
+use super::{PairKey, RuleHooks};
+
+/// The standings (as in `user_data`) of the manifolds of pairs made of
+/// parts, keyed by the pair and the manifold's sub-shapes. rapier3d merges
+/// the manifolds of such a pair into clusters for the solver and gives each
+/// cluster fresh data every step, `user_data` included, so a standing kept
+/// there would be lost (`docs/semantics.md`, "One-way surfaces").
+pub(super) type PartStandings = HashMap<(PairKey, u32, u32), u32>;
 
 /// Where a manifold stands with one surface, kept in two bits of the
 /// manifold's `user_data` (the top two for the pair's second collider as
@@ -63,14 +75,26 @@ impl RuleHooks {
         if surfaces.iter().all(Option::is_none) {
             return;
         }
+        let parts = made_of_parts(colliders, sides[0], sides[1]);
         let Some(rigid) = context.rigid_mut() else {
             return;
+        };
+        let part = (
+            PairKey::new(sides[0], sides[1]),
+            rigid.manifold.subshape1,
+            rigid.manifold.subshape2,
+        );
+        // Convex pairs keep their standing in the manifold, and take no lock.
+        let mut kept = parts.then(|| self.one_way_parts.lock().unwrap_or_else(PoisonError::into_inner));
+        let mut user_data = match &kept {
+            Some(kept) => kept.get(&part).copied().unwrap_or(0),
+            None => *rigid.user_data,
         };
         // Both sides decide on the contacts as Rapier made them; the
         // contacts are dropped once, after.
         let empty = rigid.solver_contacts.is_empty();
         let separated = rigid.solver_contacts.iter().all(|c| c.dist > 0.0);
-        let mut drop = false;
+        let mut clear = false;
         for (side, surface) in surfaces.into_iter().enumerate() {
             let Some((one_way, normal, arriving)) = surface else {
                 continue;
@@ -84,26 +108,56 @@ impl RuleHooks {
                 // Godot lets through a body leaving along the normal.
                 ok &= arriving <= 0.0;
             }
-            let next = match standing(*rigid.user_data, side) {
+            let next = match standing(user_data, side) {
                 Standing::Unknown if ok => Standing::Allowed,
                 Standing::Unknown => {
-                    drop = true;
+                    clear = true;
                     // A zero normal (touching at a point) tells nothing: wait.
                     if known { Standing::Forbidden } else { Standing::Unknown }
                 }
                 Standing::Forbidden if ok && separated => Standing::Allowed,
                 Standing::Forbidden => {
-                    drop = true;
+                    clear = true;
                     Standing::Forbidden
                 }
                 Standing::Allowed if empty => Standing::Unknown,
                 Standing::Allowed => Standing::Allowed,
             };
-            set_standing(rigid.user_data, side, next);
+            set_standing(&mut user_data, side, next);
         }
-        if drop {
+        match kept.as_mut() {
+            None => *rigid.user_data = user_data,
+            Some(kept) if user_data == 0 => {
+                kept.remove(&part);
+            }
+            Some(kept) => {
+                kept.insert(part, user_data);
+            }
+        }
+        drop(kept);
+        if clear {
             rigid.solver_contacts.clear();
         }
+    }
+}
+
+impl RuleHooks {
+    /// Forgets the standings of manifolds Rapier no longer holds, after a
+    /// step: a pair that ended, or parts no longer within reach.
+    pub(super) fn forget_part_standings(&mut self, narrow_phase: &NarrowPhase) {
+        let kept = self.one_way_parts.get_mut().unwrap_or_else(PoisonError::into_inner);
+        if kept.is_empty() {
+            return;
+        }
+        kept.retain(|&(key, subshape1, subshape2), _| {
+            let (a, b) = key.colliders();
+            narrow_phase.contact_pair(a, b).is_some_and(|pair| {
+                // The sub-shapes in the pair's own order, as the hook saw them.
+                pair.manifolds()
+                    .iter()
+                    .any(|m| m.subshape1 == subshape1 && m.subshape2 == subshape2)
+            })
+        });
     }
 }
 

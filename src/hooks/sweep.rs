@@ -37,6 +37,7 @@ impl RuleHooks {
         if self.boundary.owe_freeze {
             missing("freeze_manifolds", "before the step, after prepare");
         }
+        self.forget_part_standings(narrow_phase);
         let pending_empty = self
             .pending
             .get_mut()

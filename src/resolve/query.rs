@@ -74,7 +74,7 @@ impl CollisionRuleSet {
     /// bounding box for a shape that is not convex) lies below the
     /// surface's top (its extent along the
     /// normal in its own frame, so that a rotated platform is measured as
-    /// it stands) by more than [`ONE_WAY_QUERY_SLACK`] (1 cm). A character
+    /// it stands; for a surface of parts, its top under the source) by more than [`ONE_WAY_QUERY_SLACK`] (1 cm). A character
     /// controller given the predicate then walks or jumps through from
     /// below and stands on top, as a body does in a step.
     fn one_way_lets_query_through(
@@ -88,14 +88,32 @@ impl CollisionRuleSet {
         let Some((node, one_way)) = self.one_way_of(bodies, colliders, handle) else {
             return false;
         };
-        let Some(source) = colliders.get(source) else {
-            return false;
-        };
         let normal = one_way.world_normal(bodies, colliders, node);
         let pose = collider.position();
         let local = pose.inverse_transform_vector(normal);
         let aabb = collider.shape().compute_local_aabb();
         let top = pose.translation.dot(normal) + extent(aabb.center(), aabb.half_extents(), local);
+        let Some(source) = colliders.get(source) else {
+            return false;
+        };
+        let top = match collider.shape().as_support_map() {
+            Some(_) => top,
+            // A surface of parts (a mesh, a height field, a compound) is
+            // measured where the source is: its top along the normal under
+            // the source's centre, where a line along the normal meets it
+            // (its box's top where none does).
+            None => {
+                let bottom = pose.translation.dot(normal) - extent(aabb.center(), aabb.half_extents(), -local);
+                let centre = source.position().translation;
+                let above = top - centre.dot(normal) + 1.0;
+                let ray = Ray::new(centre + normal * above, -normal);
+                let reach = top - bottom + 2.0;
+                collider
+                    .shape()
+                    .cast_ray(pose, &ray, reach, true)
+                    .map_or(top, |toi| (centre.dot(normal) + above) - toi)
+            }
+        };
         // The source's lowest point along the normal: exact for a convex
         // shape (a capsule on a tilted platform), its bounding box's
         // otherwise.

@@ -19,3 +19,4 @@ pub(crate) use graph::{Census, Joints, census, filters_pass, pair_exists, partne
 pub(crate) use kinds::body_types;
 pub(crate) use pair_key::PairKey;
 pub(crate) use settings::{Settings, Written};
+pub(crate) use shapes::made_of_parts;

@@ -70,3 +70,15 @@ pub fn soft_piece(center: Vector) -> SoftBodyBuilder {
 pub fn tilted(builder: RigidBodyBuilder, angle: f32) -> RigidBodyBuilder {
     builder.rotation(angle)
 }
+
+/// The outline of a box of half-extents `hx`, `hy` as a closed polyline
+/// (`_hz` is the 3D scenes' depth): a shape made of parts, hollow.
+pub fn box_mesh(hx: f32, hy: f32, _hz: f32) -> ColliderBuilder {
+    let corners = vec![
+        Vector::new(-hx, -hy),
+        Vector::new(hx, -hy),
+        Vector::new(hx, hy),
+        Vector::new(-hx, hy),
+    ];
+    ColliderBuilder::polyline(corners, Some(vec![[0, 1], [1, 2], [2, 3], [3, 0]]))
+}

@@ -80,3 +80,11 @@ pub fn soft_piece(center: Vector) -> SoftBodyBuilder {
 pub fn tilted(builder: RigidBodyBuilder, angle: f32) -> RigidBodyBuilder {
     builder.rotation(Vector::new(0.0, 0.0, angle))
 }
+
+/// The surface of a box of half-extents `hx`, `hy`, `hz` as a triangle
+/// mesh: a shape made of parts, hollow.
+pub fn box_mesh(hx: f32, hy: f32, hz: f32) -> ColliderBuilder {
+    let (vertices, indices) =
+        rapier::parry::shape::Cuboid::new(Vector::new(hx, hy, hz)).to_trimesh();
+    ColliderBuilder::trimesh(vertices, indices).expect("a box's triangles make a mesh")
+}

@@ -9,7 +9,7 @@ use super::rapier::control::KinematicCharacterController;
 use super::rapier::prelude::*;
 use super::rules::{CollisionRule, CollisionRuleSet, Node, OneWay, OneWayKind, RuleHooks, Until};
 use super::scenes::Scene;
-use super::{at, cuboid, tilted};
+use super::{at, box_mesh, cuboid, tilted};
 
 /// A fixed platform at height 3, rotated by `angle` (radians, about the
 /// scene's depth axis), 3 m wide and `half_thick` thick.
@@ -222,4 +222,74 @@ fn a_drop_through_is_a_one_way_surface_and_a_rule_with_an_end() {
     }
     let y = scene.y(player);
     assert!((y - 3.4).abs() < 0.02, "up through from below, the player stands on it again: y = {y}");
+}
+
+#[test]
+fn a_platform_made_of_parts_keeps_each_part_standing_as_one_shape_does() {
+    // A thin platform as one box, and as its hollow surface (a triangle
+    // mesh; in 2D a closed polyline); a ball with no gravity rises slowly
+    // up through it. Inside, the ball touches the bottom and the top
+    // parts at once, and the bottom part's normal points up out of the
+    // surface: the standing (dropped since the ball came from below) must
+    // hold until the two are apart, or the overlap throws the ball out.
+    // rapier3d clusters the manifolds of a pair with several and gives
+    // the clusters fresh data every step, so the hooks keep the standing.
+    let rise = |parts: bool| {
+        let mut scene = Scene::new();
+        let body = scene.world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, 3.0)));
+        let shape = if parts { box_mesh(3.0, 0.2, 3.0) } else { cuboid(3.0, 0.2, 3.0) };
+        scene.world.insert_collider(shape, Some(body));
+        let riser = scene.world.insert_body(
+            RigidBodyBuilder::dynamic().translation(at(0.3, 2.2)).linvel(at(0.0, 1.0)).gravity_scale(0.0),
+        );
+        scene.world.insert_collider(ColliderBuilder::ball(0.3), Some(riser));
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_one_way(body, Some(OneWay::new(at(0.0, 1.0))));
+        let mut fastest = f32::MIN;
+        for _ in 0..120 {
+            hooks.step(&mut scene.world);
+            fastest = fastest.max(scene.world.bodies[riser].linvel().y);
+        }
+        (fastest, scene.y(riser))
+    };
+    let (one, one_end) = rise(false);
+    let (two, two_end) = rise(true);
+    assert!(one < 1.01, "through one box the ball kept its speed: fastest {one} m/s");
+    assert!(two < 1.01, "through the mesh the ball kept its speed: fastest {two} m/s (one box: {one})");
+    assert!(one_end > 4.0, "it came out above the box: {one_end}");
+    assert!((one_end - two_end).abs() < 0.01, "it rose as far: {two_end} through the mesh, {one_end} through one box");
+}
+
+#[test]
+fn a_query_measures_a_surface_of_parts_where_its_source_is() {
+    // A one-way step made of two boxes: a low part (top at y = 3) and a
+    // tall one (top at y = 5). A ball resting on the low part is on its
+    // blocking side, though below the whole shape's top.
+    let mut scene = Scene::new();
+    let body = scene.world.insert_body(RigidBodyBuilder::fixed());
+    let (low, tall) = (cuboid(1.0, 0.5, 1.0), cuboid(1.0, 1.5, 1.0));
+    let parts = vec![
+        (Pose::from_translation(at(-1.0, 2.5)), low.shape.clone()),
+        (Pose::from_translation(at(1.0, 3.5)), tall.shape.clone()),
+    ];
+    let step = scene.world.insert_collider(ColliderBuilder::compound(parts), Some(body));
+    let mut rules = CollisionRuleSet::default();
+    rules.set_one_way(body, Some(OneWay::new(at(0.0, 1.0))));
+    let cases = [
+        ((-1.0, 3.3), true, "resting on the low part"),
+        ((-1.0, 1.5), false, "under the low part"),
+        ((1.0, 4.0), false, "inside the tall part"),
+        ((1.0, 5.3), true, "resting on the tall part"),
+    ];
+    for ((x, y), blocked, what) in cases {
+        let source = scene.world.insert_body(RigidBodyBuilder::kinematic_position_based().translation(at(x, y)));
+        let ball = scene.world.insert_collider(ColliderBuilder::ball(0.3), Some(source));
+        let seen = {
+            let world = &scene.world;
+            let passes = rules.query_predicate(&world.bodies, &world.colliders, ball);
+            passes(step, &world.colliders[step])
+        };
+        assert_eq!(seen, blocked, "a ball {what} at ({x}, {y}): the query sees the step: {seen}");
+        scene.world.remove_body(source);
+    }
 }

@@ -113,15 +113,17 @@ impl RuleHooks {
         if full != self.planned.plan.full && (full.is_some() || self.planned.plan.full.is_some()) {
             self.queued.replan.get_or_insert(PlanCause::HookSettings);
         }
-        if self.decide.rules.has_changes() || self.queued.replan.is_some() {
-            self.note_edit();
-        }
         let mut changed = self.watch_edits(bodies, colliders);
         self.look_at_watched(bodies, colliders, full, &mut changed);
-        if changed.everything || !changed.nodes.is_empty() || !changed.added.is_empty() {
-            self.note_edit();
-        }
+        let replan = self.queued.replan.is_some();
         let under = self.plan_changed(bodies, colliders, graph, &changed);
+        // What the edits reached, for rule events: everything after a
+        // full plan, else the colliders under the touched nodes.
+        if replan || changed.everything {
+            self.note_edit(None);
+        } else if !under.is_empty() {
+            self.note_edit(Some(&under));
+        }
         self.recalculate_changed(bodies, colliders, under, changed.everything);
         for c in std::mem::take(&mut self.queued.wake_colliders) {
             self.queued

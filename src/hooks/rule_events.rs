@@ -8,8 +8,9 @@
 //!
 //! Nothing is done when nobody asked. When recording, a step costs a walk
 //! of Rapier's pair lists and a look-up per pair; the rule of a pair the
-//! hooks do not decide is calculated again only in a step after edits (or
-//! for a new pair, or one whose body types changed).
+//! hooks do not decide is calculated again only where an edit of the step
+//! reaches one of its colliders (everywhere after a global edit), for a
+//! new pair, or for one whose body types changed.
 
 use hashbrown::{HashMap, HashSet};
 
@@ -125,6 +126,12 @@ pub(super) struct Recording {
     /// The rules or the plan changed since the last step: unhooked pairs
     /// are calculated again.
     pub(super) edited: bool,
+    /// An edit this step may change any pair's rule (a full plan, a
+    /// global edit): every pair is calculated again.
+    everything: bool,
+    /// The colliders under the nodes this step's edits touched: the pairs
+    /// the hooks do not decide are calculated again only where they reach.
+    reached: HashSet<ColliderHandle>,
 }
 
 impl RuleHooks {
@@ -217,10 +224,15 @@ impl RuleHooks {
     }
 
     /// Notes, for the events of this step, that the rules or the plan
-    /// changed: a prepare with edits to look at.
-    pub(super) fn note_edit(&mut self) {
+    /// changed: everywhere (`None`: a full plan, a global edit), or for
+    /// the colliders `reached` under the touched nodes.
+    pub(super) fn note_edit(&mut self, reached: Option<&HashSet<ColliderHandle>>) {
         if let Some(recording) = &mut self.recording {
             recording.edited = true;
+            match reached {
+                None => recording.everything = true,
+                Some(reached) => recording.reached.extend(reached.iter().copied()),
+            }
         }
     }
 
@@ -230,7 +242,7 @@ impl RuleHooks {
         let Some(mut recording) = self.recording.take() else {
             return;
         };
-        let calculated = recording.edited
+        let calculated = recording.everything
             || recording.forced
             || self.decide.policy == RecalculationPolicy::EveryStep
             || self.full_pass().is_some();
@@ -239,8 +251,9 @@ impl RuleHooks {
         for (a, b) in self.held_pairs(world) {
             let key = PairKey::new(a, b);
             let kinds = key.kinds(world.bodies, world.colliders);
+            let reached = recording.reached.contains(&a) || recording.reached.contains(&b);
             let rule = self.held_rule(world, a, b, || match recording.live.get(&key) {
-                Some(&(rule, was)) if !calculated && was == kinds => rule,
+                Some(&(rule, was)) if !calculated && !reached && was == kinds => rule,
                 _ => self.resolve(world.bodies, world.colliders, a, b),
             });
             now.insert(key, (rule, kinds));
@@ -290,6 +303,8 @@ impl RuleHooks {
         recording.expired.clear();
         recording.forced = false;
         recording.edited = false;
+        recording.everything = false;
+        recording.reached.clear();
         self.recording = Some(recording);
     }
 

@@ -931,6 +931,20 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
         );
         writeln!(csv, "ends/projectiles,400,{}", p.csv())?;
     }
+    if selected("events/projectiles") {
+        let p = events_paired();
+        println!(
+            "  {:<22} {:>6}: {:.3} [{:.3}, {:.3}]  not recording {:>9.1} us  recording {:>9.1} us  (the ends scene; ratio to the same world not recording rule events)",
+            "events/projectiles",
+            400,
+            p.ratios[2],
+            p.ratios[0],
+            p.ratios[4],
+            p.plain * 1e6,
+            p.rules * 1e6,
+        );
+        writeln!(csv, "events/projectiles,400,{}", p.csv())?;
+    }
     if let Ok(out) = std::env::var("WORLDS_OUT") {
         let dir = std::path::Path::new(&out);
         if rows.iter().any(|(name, _, _)| name.starts_with("level/")) {
@@ -970,6 +984,8 @@ struct Ends {
     fired: VecDeque<(RigidBodyHandle, RigidBodyHandle)>,
     step: u32,
     by_hand: bool,
+    /// Rule events are recorded and drained after each step.
+    drain: bool,
 }
 
 impl Ends {
@@ -982,6 +998,7 @@ impl Ends {
             fired: VecDeque::new(),
             step: 0,
             by_hand,
+            drain: false,
         }
     }
 
@@ -1031,6 +1048,9 @@ impl Ends {
         }
         self.step += 1;
         self.hooks.step(&mut self.world);
+        if self.drain {
+            std::hint::black_box(self.hooks.drain_rule_events().count());
+        }
     }
 
     /// The project's own test: no box of one overlaps a box of the other.
@@ -1052,7 +1072,21 @@ impl Ends {
 /// themselves against the twin whose project ends them, after two seconds
 /// of firing (400 projectiles alive).
 fn ends_paired() -> Paired {
-    let mut twins = [Ends::new(false), Ends::new(true)];
+    twins_paired([Ends::new(false), Ends::new(true)])
+}
+
+/// The `events` scene: the `ends` scene recording rule events (drained
+/// after each step) against the same scene not recording.
+fn events_paired() -> Paired {
+    let mut recording = Ends::new(false);
+    recording.hooks.record_rule_events(true);
+    recording.drain = true;
+    twins_paired([recording, Ends::new(false)])
+}
+
+/// Five paired runs of the first twin against the second, after two
+/// seconds of firing; the two must step alike.
+fn twins_paired(mut twins: [Ends; 2]) -> Paired {
     for _ in 0..120 {
         twins.iter_mut().for_each(Ends::step);
     }
@@ -1080,7 +1114,8 @@ fn ends_paired() -> Paired {
         .all(|((_, a), (_, b))| a.position() == b.position());
     assert!(
         same,
-        "the twins of the ends scene differ: the rules did not end as the project ends them"
+        "the twins of the ends scene differ: the rules did not end as the project ends them \
+         (or recording events changed the physics)"
     );
     runs.sort_by(|a, b| a.0.total_cmp(&b.0));
     Paired {

@@ -113,6 +113,8 @@ impl RuleEventHandler for std::sync::mpsc::Sender<RuleEvent> {
 #[derive(Default)]
 pub(super) struct Recording {
     live: HashMap<PairKey, (CollisionRule, BodyKinds)>,
+    /// The map of the step before last, kept for its allocation.
+    spare: HashMap<PairKey, (CollisionRule, BodyKinds)>,
     events: Vec<RuleEvent>,
     handler: Option<Box<dyn RuleEventHandler>>,
     /// Pairs given or dropped an override since the last step.
@@ -246,8 +248,10 @@ impl RuleHooks {
             || recording.forced
             || self.decide.policy == RecalculationPolicy::EveryStep
             || self.full_pass().is_some();
-        let mut now: HashMap<PairKey, (CollisionRule, BodyKinds)> =
-            HashMap::with_capacity(recording.live.len());
+        // Last step's map, cleared, holds this step's pairs: no allocation
+        // once the world has grown.
+        let mut now = std::mem::take(&mut recording.spare);
+        now.clear();
         for (a, b) in self.held_pairs(world) {
             let key = PairKey::new(a, b);
             let kinds = key.kinds(world.bodies, world.colliders);
@@ -258,16 +262,14 @@ impl RuleHooks {
             });
             now.insert(key, (rule, kinds));
         }
-        let mut keys: Vec<PairKey> = now.keys().chain(recording.live.keys()).copied().collect();
-        keys.sort_unstable();
-        keys.dedup();
         let live = |entry: Option<&(CollisionRule, BodyKinds)>| {
             entry.copied().filter(|&(rule, _)| rule != CollisionRule::NoPair)
         };
-        for key in keys {
+        let event = |key: PairKey,
+                     before: Option<&(CollisionRule, BodyKinds)>,
+                     after: Option<&(CollisionRule, BodyKinds)>| {
             let (collider1, collider2) = key.colliders();
-            let (before, after) = (recording.live.get(&key), now.get(&key));
-            let event = match (live(before), after.copied()) {
+            Some(match (live(before), after.copied()) {
                 (None, Some((rule, _))) if rule != CollisionRule::NoPair => {
                     RuleEvent::PairStarted { collider1, collider2, rule }
                 }
@@ -290,14 +292,30 @@ impl RuleHooks {
                     }
                 }
                 (Some((rule, _)), None) => RuleEvent::PairEnded { collider1, collider2, rule },
-                _ => continue,
-            };
+                _ => return None,
+            })
+        };
+        // The pairs held now, then those no longer held; only the events
+        // are sorted, into the pairs' order.
+        let mut events: Vec<(PairKey, RuleEvent)> = now
+            .iter()
+            .filter_map(|(&key, after)| event(key, recording.live.get(&key), Some(after)).map(|e| (key, e)))
+            .collect();
+        events.extend(
+            recording
+                .live
+                .iter()
+                .filter(|(key, _)| !now.contains_key(*key))
+                .filter_map(|(&key, before)| event(key, Some(before), None).map(|e| (key, e))),
+        );
+        events.sort_unstable_by_key(|&(key, _)| key);
+        for (_, event) in events {
             match &recording.handler {
                 Some(handler) => handler.handle_rule_event(event),
                 None => recording.events.push(event),
             }
         }
-        recording.live = now;
+        recording.spare = std::mem::replace(&mut recording.live, now);
         recording.overridden.clear();
         recording.expired_pairs.clear();
         recording.expired.clear();

@@ -151,16 +151,16 @@ fn a_one_way_setting_follows_the_parent_map_and_the_nearest_wins() {
 /// A character controller's run: starts under the platform, jumps up
 /// through it for half a second, then falls; returns its height at the end
 /// and the highest it reached.
-fn jump_through(one_way: bool) -> (f32, f32) {
+fn jump_through(one_way: Option<OneWayKind>, angle: f32) -> (f32, f32) {
     let mut scene = Scene::new();
-    let (platform_body, _) = platform(&mut scene, 0.0, 0.1);
+    let (platform_body, _) = platform(&mut scene, angle, 0.1);
     let character = scene
         .world
         .insert_body(RigidBodyBuilder::kinematic_position_based().translation(at(0.0, 1.0)));
     let shape = scene.world.insert_collider(cuboid(0.3, 0.5, 0.3), Some(character));
     let mut rules = CollisionRuleSet::default();
-    if one_way {
-        rules.set_one_way(platform_body, Some(OneWay::new(at(0.0, 1.0))));
+    if let Some(kind) = one_way {
+        rules.set_one_way(platform_body, Some(OneWay::new(at(0.0, 1.0)).with_kind(kind)));
     }
     let controller = KinematicCharacterController {
         snap_to_ground: None,
@@ -188,10 +188,19 @@ fn jump_through(one_way: bool) -> (f32, f32) {
 
 #[test]
 fn a_character_controller_jumps_up_through_a_one_way_platform_and_stands_on_it() {
-    let (y, highest) = jump_through(true);
+    let (y, highest) = jump_through(Some(OneWayKind::Rapier), 0.0);
     assert!(highest > 4.0, "the character went up through the platform: highest {highest}");
     assert!((y - 3.6).abs() < 0.05, "the character stands on the platform: y = {y}");
-    let (y, highest) = jump_through(false);
+    // Rotated, in both semantics: it stands where its box's higher bottom
+    // corner meets the tilted top.
+    let angle = 0.2f32;
+    for kind in [OneWayKind::Rapier, OneWayKind::Godot] {
+        let (y, highest) = jump_through(Some(kind), angle);
+        let expected = top_at(0.3, angle, 0.1) + 0.5;
+        assert!(highest > 4.0, "{kind:?}, rotated: the character went up through: highest {highest}");
+        assert!((y - expected).abs() < 0.05, "{kind:?}, rotated: the character stands on the platform: y = {y}, {expected} expected");
+    }
+    let (y, highest) = jump_through(None, 0.0);
     assert!(highest < 2.5 && y < 2.0, "without one-way, the platform stops the jump: highest {highest}, y = {y}");
 }
 

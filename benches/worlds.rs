@@ -917,25 +917,29 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
         writeln!(csv, "{name},{n},{}", p.csv())?;
         rows.push((name, n, p));
     }
-    if selected("ends/projectiles") {
-        let p = ends_paired();
-        println!(
-            "  {:<22} {:>6}: {:.3} [{:.3}, {:.3}]  by hand {:>9.1} us  ending {:>9.1} us  (both twins through RuleHooks; ratio to the project ending each rule itself)",
+    let twin_scenes: [TwinScene; 2] = [
+        (
             "ends/projectiles",
-            400,
-            p.ratios[2],
-            p.ratios[0],
-            p.ratios[4],
-            p.plain * 1e6,
-            p.rules * 1e6,
-        );
-        writeln!(csv, "ends/projectiles,400,{}", p.csv())?;
-    }
-    if selected("events/projectiles") {
-        let p = events_paired();
-        println!(
-            "  {:<22} {:>6}: {:.3} [{:.3}, {:.3}]  not recording {:>9.1} us  recording {:>9.1} us  (the ends scene; ratio to the same world not recording rule events)",
+            ends_paired,
+            "by hand",
+            "ending",
+            "both twins through RuleHooks; ratio to the project ending each rule itself",
+        ),
+        (
             "events/projectiles",
+            events_paired,
+            "not recording",
+            "recording",
+            "the ends scene; ratio to the same world not recording rule events",
+        ),
+    ];
+    for (name, run, second, first, why) in twin_scenes {
+        if !selected(name) {
+            continue;
+        }
+        let p = run();
+        println!(
+            "  {name:<22} {:>6}: {:.3} [{:.3}, {:.3}]  {second} {:>9.1} us  {first} {:>9.1} us  ({why})",
             400,
             p.ratios[2],
             p.ratios[0],
@@ -943,7 +947,7 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
             p.plain * 1e6,
             p.rules * 1e6,
         );
-        writeln!(csv, "events/projectiles,400,{}", p.csv())?;
+        writeln!(csv, "{name},400,{}", p.csv())?;
     }
     if let Ok(out) = std::env::var("WORLDS_OUT") {
         let dir = std::path::Path::new(&out);
@@ -959,6 +963,16 @@ fn paired() -> Result<(), Box<dyn std::error::Error>> {
     }
     Ok(())
 }
+
+/// A scene of two `Ends` twins: its name, its run, what the second twin
+/// and the first are, and what the ratio compares.
+type TwinScene = (
+    &'static str,
+    fn() -> Paired,
+    &'static str,
+    &'static str,
+    &'static str,
+);
 
 /// The `ends` scene's world: the level, and ten fixed turrets on it.
 fn turret_level() -> (PhysicsWorld, Vec<RigidBodyHandle>) {

@@ -144,14 +144,22 @@ impl RuleHooks {
 impl RuleHooks {
     /// Forgets the standings of manifolds Rapier no longer holds, after a
     /// step: a pair that ended, or parts no longer within reach.
-    pub(super) fn forget_part_standings(&mut self, narrow_phase: &NarrowPhase) {
+    pub(super) fn forget_part_standings(&mut self, narrow_phase: &NarrowPhase, colliders: &ColliderSet) {
+        let uses = self.decide.rules.uses_one_ways();
         let kept = self.one_way_parts.get_mut().unwrap_or_else(PoisonError::into_inner);
         if kept.is_empty() {
             return;
         }
+        if !uses {
+            kept.clear();
+            return;
+        }
         kept.retain(|&(key, subshape1, subshape2), _| {
             let (a, b) = key.colliders();
-            narrow_phase.contact_pair(a, b).is_some_and(|pair| {
+            // A handle whose slot was reused must not find the new
+            // collider's pair.
+            let there = colliders.contains(a) && colliders.contains(b);
+            there && narrow_phase.contact_pair(a, b).is_some_and(|pair| {
                 // The sub-shapes in the pair's own order, as the hook saw them.
                 pair.manifolds()
                     .iter()

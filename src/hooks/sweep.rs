@@ -37,7 +37,7 @@ impl RuleHooks {
         if self.boundary.owe_freeze {
             missing("freeze_manifolds", "before the step, after prepare");
         }
-        self.forget_part_standings(narrow_phase);
+        self.forget_part_standings(narrow_phase, colliders);
         let pending_empty = self
             .pending
             .get_mut()

@@ -98,20 +98,21 @@ impl CollisionRuleSet {
         };
         let top = match collider.shape().as_support_map() {
             Some(_) => top,
-            // A surface of parts (a mesh, a height field, a compound) is
-            // measured where the source is: its top along the normal under
-            // the source's centre, where a line along the normal meets it
-            // (its box's top where none does).
+            // A surface of parts (a mesh, a height field, a compound, a
+            // polyline) is measured where the source is: the first part
+            // under the source's centre, along the normal (the centre
+            // itself when it is inside a part; the whole box's top where
+            // no part is under it), so that a part above the source (a
+            // higher platform of the same mesh) does not count.
             None => {
                 let bottom = pose.translation.dot(normal) - extent(aabb.center(), aabb.half_extents(), -local);
                 let centre = source.position().translation;
-                let above = top - centre.dot(normal) + 1.0;
-                let ray = Ray::new(centre + normal * above, -normal);
-                let reach = top - bottom + 2.0;
+                let ray = Ray::new(centre, -normal);
+                let reach = (centre.dot(normal) - bottom).max(0.0) + 1.0;
                 collider
                     .shape()
                     .cast_ray(pose, &ray, reach, true)
-                    .map_or(top, |toi| (centre.dot(normal) + above) - toi)
+                    .map_or(top, |toi| centre.dot(normal) - toi)
             }
         };
         // The source's lowest point along the normal: exact for a convex

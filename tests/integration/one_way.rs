@@ -277,9 +277,13 @@ fn a_query_measures_a_surface_of_parts_where_its_source_is() {
     let mut scene = Scene::new();
     let body = scene.world.insert_body(RigidBodyBuilder::fixed());
     let (low, tall) = (cuboid(1.0, 0.5, 1.0), cuboid(1.0, 1.5, 1.0));
+    // And a thin shelf of the same shape high above the low part: a part
+    // above the source does not count.
+    let shelf = cuboid(1.0, 0.1, 1.0);
     let parts = vec![
         (Pose::from_translation(at(-1.0, 2.5)), low.shape.clone()),
         (Pose::from_translation(at(1.0, 3.5)), tall.shape.clone()),
+        (Pose::from_translation(at(-1.0, 7.0)), shelf.shape.clone()),
     ];
     let step = scene.world.insert_collider(ColliderBuilder::compound(parts), Some(body));
     let mut rules = CollisionRuleSet::default();
@@ -289,6 +293,8 @@ fn a_query_measures_a_surface_of_parts_where_its_source_is() {
         ((-1.0, 1.5), false, "under the low part"),
         ((1.0, 4.0), false, "inside the tall part"),
         ((1.0, 5.3), true, "resting on the tall part"),
+        ((-1.0, 7.4), true, "resting on the shelf"),
+        ((-1.0, 5.0), true, "above the low part, under the shelf"),
     ];
     for ((x, y), blocked, what) in cases {
         let source = scene.world.insert_body(RigidBodyBuilder::kinematic_position_based().translation(at(x, y)));

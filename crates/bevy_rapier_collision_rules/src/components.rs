@@ -71,6 +71,9 @@ pub struct OneWaySurface(pub OneWay);
 #[derive(Component, Clone, Debug, Default, PartialEq)]
 pub struct SpecificRules {
     entries: Vec<SpecificEntry>,
+    /// Counts the settings, so that an entry set again with the same rule
+    /// and end is told from the one before (and its end restarts).
+    settings: u32,
 }
 
 /// One entry of [`SpecificRules`].
@@ -79,6 +82,8 @@ pub(crate) struct SpecificEntry {
     pub(crate) other: Entity,
     pub(crate) rule: CollisionRule,
     pub(crate) until: Option<Until>,
+    /// Which setting of the component made it.
+    pub(crate) setting: u32,
 }
 
 impl SpecificRules {
@@ -116,7 +121,13 @@ impl SpecificRules {
 
     fn put(&mut self, other: Entity, rule: CollisionRule, until: Option<Until>) {
         let at = self.entries.iter().position(|e| e.other == other);
-        let entry = SpecificEntry { other, rule, until };
+        self.settings = self.settings.wrapping_add(1);
+        let entry = SpecificEntry {
+            other,
+            rule,
+            until,
+            setting: self.settings,
+        };
         match (at, rule) {
             (Some(i), CollisionRule::Defer) => {
                 self.entries.swap_remove(i);
@@ -141,6 +152,11 @@ impl SpecificRules {
         self.entry(other).and_then(|e| e.until)
     }
 
+    /// The setting that made the entry about `other`.
+    pub(crate) fn setting_of(&self, other: Entity) -> Option<u32> {
+        self.entry(other).map(|e| e.setting)
+    }
+
     fn entry(&self, other: Entity) -> Option<&SpecificEntry> {
         self.entries.iter().find(|e| e.other == other)
     }
@@ -148,6 +164,18 @@ impl SpecificRules {
     /// Every entry (the entity named and the rule), in no particular order.
     pub fn iter(&self) -> impl Iterator<Item = (Entity, CollisionRule)> + '_ {
         self.entries.iter().map(|e| (e.other, e.rule))
+    }
+
+    /// Gives `to` a copy of the entry about `from` (the same setting: the
+    /// end the rule set copied for a piece of a tear runs on), unless `to`
+    /// has one.
+    pub(crate) fn copy_entry(&mut self, from: Entity, to: Entity) {
+        if self.entry(to).is_some() {
+            return;
+        }
+        if let Some(&entry) = self.entry(from) {
+            self.entries.push(SpecificEntry { other: to, ..entry });
+        }
     }
 
     /// Every entry with its end, for the plugin.

@@ -164,14 +164,8 @@ pub(crate) fn name_tear_pieces(
             let Ok(mut rules) = specific.get_mut(by) else {
                 continue;
             };
-            let (rule, until) = (rules.get(tear.soft_body), rules.until(tear.soft_body));
             for piece in tear.pieces.iter().map(|p| p.soft_body) {
-                if rule != CollisionRule::Defer && rules.get(piece) == CollisionRule::Defer {
-                    match until {
-                        Some(until) => rules.set_until(piece, rule, until),
-                        None => rules.set(piece, rule),
-                    }
-                }
+                rules.copy_entry(tear.soft_body, piece);
             }
         }
     }
@@ -342,6 +336,7 @@ fn apply(
         other: target,
         rule,
         until,
+        setting,
     } in specific.into_iter().flat_map(SpecificRules::entries)
     {
         if !objects.exists(target) {
@@ -356,6 +351,7 @@ fn apply(
                 node,
                 rule,
                 until,
+                setting,
             }),
             // Another context's object means nothing here.
             Some(_) => {}
@@ -438,9 +434,9 @@ pub(crate) fn drop_ended_entries(
         for entry in ended {
             ledger.unname_target(entity, entry.target);
             if let Ok(mut component) = specific.get_mut(entity) {
-                // Unless the project has set the entry again since.
-                let given = (component.get(entry.target), component.until(entry.target));
-                if given == (entry.rule, entry.until) {
+                // Unless the project has set the entry again since: then
+                // it is applied again, with its end from the start.
+                if component.setting_of(entry.target) == Some(entry.setting) {
                     component.set(entry.target, CollisionRule::Defer);
                 }
             }

@@ -30,6 +30,9 @@ pub(crate) struct AppliedEntry {
     pub(crate) rule: CollisionRule,
     /// The end as the component gave it (the count runs in the rule set).
     pub(crate) until: Option<Until>,
+    /// The component's setting that made it: an entry set again is applied
+    /// again, and its end restarts.
+    pub(crate) setting: u32,
 }
 
 /// An entity that specific rules name.

@@ -98,6 +98,24 @@ fn editing_other_entries_does_not_restart_the_count() {
         .set_until(f, NoResponse, end);
     let held = frames_held(&mut sim, b, f, 40);
     assert_eq!(held, 10, "the entry set again held {held} frames");
+    // And set again the same while it runs: from the start again (a
+    // drop-through pressed twice).
+    sim.app
+        .world_mut()
+        .get_mut::<SpecificRules>(b)
+        .unwrap()
+        .set_until(f, NoResponse, end);
+    sim.run(4);
+    sim.app
+        .world_mut()
+        .get_mut::<SpecificRules>(b)
+        .unwrap()
+        .set_until(f, NoResponse, end);
+    let held = frames_held(&mut sim, b, f, 40);
+    assert_eq!(
+        held, 10,
+        "the entry set again while it ran held {held} more frames, 10 expected"
+    );
 }
 
 #[test]

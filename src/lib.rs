@@ -13,6 +13,8 @@ macro_rules! dimension {
         pub use $rapier;
         use $rapier as rapier;
 
+        #[path = "debug/mod.rs"]
+        mod debug;
         #[path = "hooks/mod.rs"]
         mod hooks;
         #[path = "model/mod.rs"]
@@ -24,8 +26,11 @@ macro_rules! dimension {
         #[path = "world/mod.rs"]
         mod world;
 
+        pub use debug::{RuleColor, RulePalette};
+        #[cfg(feature = "debug-render")]
+        pub use debug::{RuleDebugFilter, RuleDebugRender, RuleLabelBackend};
         pub use hooks::{
-            CalculatorContext, FullPass, ManifoldUpdate, PairCreated, PlanCause,
+            CalculatorContext, FullPass, ManifoldUpdate, PairCreated, PlanCause, Reach,
             RecalculationPolicy, RuleChange, RuleEvent, RuleEventHandler, RuleHooks, StepStats,
             WorldRef,
         };

@@ -34,10 +34,12 @@ struct Native {
 /// with [`WorldRef::new`] for a bare pipeline.
 #[derive(Clone, Copy)]
 pub struct WorldRef<'a> {
-    narrow_phase: &'a NarrowPhase,
-    pub(super) bodies: &'a RigidBodySet,
-    pub(super) colliders: &'a ColliderSet,
-    joints: Option<Joints<'a>>,
+    pub(crate) narrow_phase: &'a NarrowPhase,
+    pub(crate) bodies: &'a RigidBodySet,
+    pub(crate) colliders: &'a ColliderSet,
+    pub(crate) joints: Option<Joints<'a>>,
+    /// Only the debug view reads them (Rapier draws soft bodies).
+    pub(crate) soft_bodies: Option<&'a SoftBodySet>,
 }
 
 impl<'a> WorldRef<'a> {
@@ -55,6 +57,7 @@ impl<'a> WorldRef<'a> {
             bodies,
             colliders,
             joints: None,
+            soft_bodies: None,
         }
     }
 
@@ -69,12 +72,22 @@ impl<'a> WorldRef<'a> {
         self.joints = Some(Joints { impulse, multibody });
         self
     }
+
+    /// The world's soft bodies too, for a debug view that draws them as
+    /// Rapier's debug rendering does (feature `debug-render`); the
+    /// live-pair questions do not need them.
+    #[must_use]
+    pub fn with_soft_bodies(mut self, soft_bodies: &'a SoftBodySet) -> WorldRef<'a> {
+        self.soft_bodies = Some(soft_bodies);
+        self
+    }
 }
 
 impl<'a> From<&'a PhysicsWorld> for WorldRef<'a> {
     fn from(world: &'a PhysicsWorld) -> WorldRef<'a> {
         WorldRef::new(&world.narrow_phase, &world.bodies, &world.colliders)
             .with_joints(&world.impulse_joints, &world.multibody_joints)
+            .with_soft_bodies(&world.soft_bodies)
     }
 }
 

@@ -10,7 +10,8 @@
 //! the rules, and the pieces of cuts and tears). During the step Rapier asks it about
 //! the pairs of hooked colliders ([`answer`]), which it answers from the
 //! table of live pairs ([`pair_state`]). [`live`] is the live-pair API,
-//! answered on demand from Rapier's graph; [`rule_events`] reports what
+//! answered on demand from Rapier's graph; [`reach`] says how far the
+//! rules reach a collider or a pair; [`rule_events`] reports what
 //! changed for live pairs to a game that asks; [`stats`] says what the
 //! last step did.
 //!
@@ -24,6 +25,7 @@ mod live;
 mod one_way_contacts;
 mod pair_state;
 mod prepare;
+mod reach;
 mod recalculate;
 mod roster;
 mod rule_events;
@@ -50,6 +52,8 @@ pub(crate) use pair_state::{PairState, PairTable};
 pub(crate) use super::world::PairKey;
 pub use stats::{FullPass, PlanCause, StepStats};
 pub use live::WorldRef;
+pub use reach::Reach;
+pub(crate) use reach::PairReach;
 pub use rule_events::{RuleChange, RuleEvent, RuleEventHandler};
 use roster::Roster;
 

@@ -12,6 +12,9 @@ macro_rules! dimension_free_tests {
     () => {
         #[path = "boundary.rs"]
         mod boundary;
+        #[cfg(feature = "debug-render")]
+        #[path = "debug_view.rs"]
+        mod debug_view;
         #[path = "driver.rs"]
         pub mod driver;
         #[path = "endings.rs"]

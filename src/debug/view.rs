@@ -1,0 +1,290 @@
+//! The debug view: what Rapier's debug rendering draws, with the shapes of
+//! the colliders the rules reach tinted, then a line for each live pair the
+//! rules reach in its rule's colour, with marks for overrides and ends.
+
+use super::super::rapier::prelude::*;
+
+use super::super::hooks::{PairReach, WorldRef};
+use super::super::RuleHooks;
+use super::label::label_text;
+use super::tint::Tinted;
+use super::{RuleDebugFilter, RuleLabelBackend, RulePalette};
+
+/// Rapier's debug rendering with the rules drawn over it, through the
+/// project's own [`DebugRenderBackend`] (feature `debug-render`).
+///
+/// [`render`](Self::render) draws what Rapier's own pipeline draws, in the
+/// same order, and then the rules (`docs/semantics.md`, "Seeing the rules"):
+///
+/// - **tints**: the shape of a collider the rules reach is drawn in the
+///   palette's hue for [`Reach::Planned`](super::super::Reach::Planned)
+///   (teal: the planner wrote Rapier groups) or
+///   [`Reach::Hooked`](super::super::Reach::Hooked) (red: the hook answers
+///   its pairs), keeping Rapier's lightness, so sleeping colliders stay
+///   dim; an unreached collider keeps Rapier's colour;
+/// - **pairs**: a line between the centres of the two colliders of each
+///   live pair the rules reach, in its rule's colour (`NoContacts` and
+///   `NoResponse` pairs included; a `NoPair` pair is not live and has
+///   none). Pairs of two unreached colliders are plain Rapier: Rapier's
+///   own contacts mode draws them;
+/// - **marks**: a cross at the middle of the line of a pair whose rule is
+///   an override (`set_pair_rule`, yellow, along the axes) or ends
+///   ([`Until`](super::super::Until), pink, across them).
+///
+/// A world the rules do not reach is drawn exactly as Rapier draws it.
+/// Nothing is kept between frames and nothing runs while the view is not
+/// drawn; drawing it costs Rapier's drawing and a pass over the live pairs.
+///
+/// ```
+/// use rapier3d::prelude::*;
+/// use rapier_collision_rules::{CollisionRule, RuleDebugRender, RuleHooks};
+///
+/// /// A backend that counts lines by colour (a real one draws them).
+/// #[derive(Default)]
+/// struct Lines(Vec<[f32; 4]>);
+///
+/// impl DebugRenderBackend for Lines {
+///     fn draw_line(&mut self, _: DebugRenderObject, _: Vector, _: Vector, color: DebugColor) {
+///         self.0.push(color);
+///     }
+/// }
+///
+/// let mut world = PhysicsWorld::new();
+/// let ground = world.insert_body(RigidBodyBuilder::fixed());
+/// world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+/// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.9, 0.0)));
+/// world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
+/// let mut hooks = RuleHooks::default();
+/// hooks.rules_mut().set_specific(ghost, ground, CollisionRule::NoResponse);
+/// hooks.step(&mut world);
+///
+/// let mut view = RuleDebugRender::default();
+/// let mut lines = Lines::default();
+/// view.render(&mut lines, &hooks, &world);
+/// let orange = view.palette.no_response.hsla(1.0);
+/// assert_eq!(lines.0.iter().filter(|&&c| c == orange).count(), 1, "one NoResponse pair");
+/// ```
+pub struct RuleDebugRender {
+    /// Rapier's own pipeline, with its style and mode: what it draws is
+    /// drawn first, as Rapier draws it.
+    pub pipeline: DebugRenderPipeline,
+    /// The colours of the rules.
+    pub palette: RulePalette,
+    /// Which pairs and colliders the rules are drawn for.
+    pub filter: RuleDebugFilter,
+    /// Whether the shapes of colliders the rules reach are tinted.
+    pub tints: bool,
+    /// Whether each live pair the rules reach gets a line.
+    pub pairs: bool,
+    /// Whether overrides and rules with an end are marked on their pair's line.
+    pub marks: bool,
+    /// The length of a mark's strokes, in the world's units.
+    pub mark_size: Real,
+}
+
+impl Default for RuleDebugRender {
+    fn default() -> RuleDebugRender {
+        RuleDebugRender::new(DebugRenderPipeline::default())
+    }
+}
+
+impl RuleDebugRender {
+    /// The view over `pipeline` (Rapier's, with the style and mode the
+    /// project chose), drawing tints, pairs and marks in the default palette.
+    #[must_use]
+    pub fn new(pipeline: DebugRenderPipeline) -> RuleDebugRender {
+        RuleDebugRender {
+            pipeline,
+            palette: RulePalette::default(),
+            filter: RuleDebugFilter::default(),
+            tints: true,
+            pairs: true,
+            marks: true,
+            mark_size: 0.25,
+        }
+    }
+
+    /// Draws what Rapier's pipeline draws of `world` (tinted), then the
+    /// rules. `world` is a `&PhysicsWorld`, or a [`WorldRef::new`] over a
+    /// bare pipeline's sets: its joints and soft bodies are drawn if it has
+    /// them ([`WorldRef::with_joints`], [`WorldRef::with_soft_bodies`]).
+    pub fn render<'w>(
+        &mut self,
+        backend: &mut impl DebugRenderBackend,
+        hooks: &RuleHooks,
+        world: impl Into<WorldRef<'w>>,
+    ) {
+        let world = world.into();
+        let (bodies, colliders) = (world.bodies, world.colliders);
+        // Rapier's `render`, part by part, in its order.
+        self.pipeline.render_rigid_bodies(backend, bodies);
+        if self.tints {
+            let mode = self.pipeline.mode;
+            self.pipeline.mode = mode & DebugRenderMode::COLLIDER_SHAPES;
+            let mut tinted = Tinted {
+                backend: &mut *backend,
+                hooks,
+                bodies,
+                colliders,
+                palette: &self.palette,
+                filter: &self.filter,
+            };
+            self.pipeline.render_colliders(&mut tinted, bodies, colliders);
+            // Bounding boxes and pseudo-normals keep Rapier's colours.
+            self.pipeline.mode = mode - DebugRenderMode::COLLIDER_SHAPES;
+            self.pipeline.render_colliders(backend, bodies, colliders);
+            self.pipeline.mode = mode;
+        } else {
+            self.pipeline.render_colliders(backend, bodies, colliders);
+        }
+        if let Some(joints) = world.joints {
+            self.pipeline.render_joints(backend, bodies, joints.impulse, joints.multibody);
+        }
+        self.pipeline.render_contacts(backend, colliders, world.narrow_phase);
+        if let Some(soft_bodies) = world.soft_bodies {
+            self.pipeline.render_soft_bodies(backend, soft_bodies);
+        }
+        self.render_rules(backend, hooks, world);
+    }
+
+    /// Draws the rules alone (pairs and marks, no tints, nothing of
+    /// Rapier's): for a project that draws Rapier's part itself.
+    pub fn render_rules<'w>(
+        &self,
+        backend: &mut impl DebugRenderBackend,
+        hooks: &RuleHooks,
+        world: impl Into<WorldRef<'w>>,
+    ) {
+        if !self.pairs && !self.marks {
+            return;
+        }
+        let world = world.into();
+        self.for_each_pair(hooks, world, |object, line, reach| {
+            if !backend.filter_object(object) {
+                return;
+            }
+            if self.pairs {
+                let color = self.palette.rule(Some(reach.rule)).hsla(1.0);
+                backend.draw_line(object, line.from, line.to, color);
+            }
+            if self.marks {
+                let middle = line.middle();
+                if reach.overridden {
+                    let color = self.palette.overridden.hsla(1.0);
+                    for axis in 0..DIM {
+                        let mut stroke = Vector::ZERO;
+                        stroke[axis] = self.mark_size * 0.5;
+                        backend.draw_line(object, middle - stroke, middle + stroke, color);
+                    }
+                }
+                if reach.ending {
+                    let color = self.palette.ending.hsla(1.0);
+                    let half = self.mark_size * 0.5 * std::f32::consts::FRAC_1_SQRT_2;
+                    let (mut x, mut y) = (Vector::ZERO, Vector::ZERO);
+                    (x[0], y[1]) = (half, half);
+                    for stroke in [x + y, x - y] {
+                        backend.draw_line(object, middle - stroke, middle + stroke, color);
+                    }
+                }
+            }
+        });
+    }
+
+    /// Hands `backend` one label per pair the view draws, at the middle of
+    /// its line: the rule and what decided it, as
+    /// [`CollisionRuleSet::explain`](super::super::CollisionRuleSet::explain)
+    /// tells (`NoResponse: specific body 2 / collider 5`), or `override`,
+    /// or `calculator`; `, ends` and `, hooked` follow where they hold.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleDebugRender, RuleHooks, RuleLabelBackend};
+    ///
+    /// #[derive(Default)]
+    /// struct Labels(Vec<String>);
+    ///
+    /// impl RuleLabelBackend for Labels {
+    ///     fn draw_label(&mut self, _at: Vector, text: &str, _color: [f32; 4]) {
+    ///         self.0.push(text.to_owned());
+    ///     }
+    /// }
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed());
+    /// world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+    /// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.9, 0.0)));
+    /// world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific(ghost, ground, CollisionRule::NoResponse);
+    /// hooks.step(&mut world);
+    ///
+    /// let mut labels = Labels::default();
+    /// RuleDebugRender::default().render_labels(&mut labels, &hooks, &world);
+    /// // The nodes come in the order of the pair's colliders in Rapier's graph.
+    /// let (g, b) = (ghost.into_raw_parts().0, ground.into_raw_parts().0);
+    /// let one_way = format!("NoResponse: specific body {g} / body {b}");
+    /// let other_way = format!("NoResponse: specific body {b} / body {g}");
+    /// assert!(labels.0 == [one_way] || labels.0 == [other_way], "{:?}", labels.0);
+    /// ```
+    pub fn render_labels<'w>(
+        &self,
+        backend: &mut impl RuleLabelBackend,
+        hooks: &RuleHooks,
+        world: impl Into<WorldRef<'w>>,
+    ) {
+        let world = world.into();
+        self.for_each_pair(hooks, world, |_, line, reach| {
+            let why = hooks.rules().explain(world.bodies, world.colliders, line.a, line.b);
+            let text = label_text(&reach, &why);
+            let color = self.palette.rule(Some(reach.rule)).hsla(1.0);
+            backend.draw_label(line.middle(), &text, color);
+        });
+    }
+
+    /// Each live pair the rules reach that the filter shows, with the
+    /// object Rapier's backends know it by (the contact pair; the first
+    /// collider for a sensor pair) and the centres of its colliders' boxes.
+    fn for_each_pair<'w>(
+        &self,
+        hooks: &RuleHooks,
+        world: WorldRef<'w>,
+        mut draw: impl FnMut(DebugRenderObject<'w>, Segment, PairReach),
+    ) {
+        let (bodies, colliders) = (world.bodies, world.colliders);
+        let rules = hooks.rules();
+        for (a, b, pair) in hooks.reached_pairs(world) {
+            if !self.filter.shows(pair.rule, pair.hooked) {
+                continue;
+            }
+            let shown = |c| self.filter.holds(rules, bodies, colliders, c);
+            if !shown(a) && !shown(b) {
+                continue;
+            }
+            let (Some(ca), Some(cb)) = (colliders.get(a), colliders.get(b)) else {
+                continue;
+            };
+            let object = match world.narrow_phase.contact_pair(a, b) {
+                Some(contact) => DebugRenderObject::ContactPair(contact, ca, cb),
+                None => DebugRenderObject::Collider(a, ca),
+            };
+            let (from, to) = (ca.compute_aabb().center(), cb.compute_aabb().center());
+            draw(object, Segment { a, b, from, to }, pair);
+        }
+    }
+}
+
+/// A drawn pair's colliders and the centres of their boxes, where its
+/// line runs.
+#[derive(Clone, Copy)]
+struct Segment {
+    a: ColliderHandle,
+    b: ColliderHandle,
+    from: Vector,
+    to: Vector,
+}
+
+impl Segment {
+    fn middle(&self) -> Vector {
+        (self.from + self.to) * 0.5
+    }
+}

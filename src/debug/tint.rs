@@ -18,21 +18,25 @@ pub(crate) struct Tinted<'a, B> {
     pub(crate) colliders: &'a ColliderSet,
     pub(crate) palette: &'a RulePalette,
     pub(crate) filter: &'a RuleDebugFilter,
+    /// Only the shapes of colliders that get a tint are drawn.
+    pub(crate) only_reached: bool,
 }
 
 impl<B: DebugRenderBackend> Tinted<'_, B> {
-    fn color(&self, object: DebugRenderObject<'_>, color: DebugColor) -> DebugColor {
+    /// The tint of a collider's shape, if it gets one.
+    fn tint(&self, object: DebugRenderObject<'_>) -> Option<DebugColor> {
         let DebugRenderObject::Collider(handle, _) = object else {
-            return color;
+            return None;
         };
         let reach = self.hooks.reach(handle);
         let tinted = self.filter.tints(reach)
             && self.filter.holds(self.hooks.rules(), self.bodies, self.colliders, handle);
-        match self.palette.reach(reach).filter(|_| tinted) {
-            Some(tint) => {
-                let [hue, saturation, _, _] = tint.hsla(1.0);
-                [hue, saturation, color[2], color[3]]
-            }
+        self.palette.reach(reach).filter(|_| tinted).map(|tint| tint.hsla(1.0))
+    }
+
+    fn color(&self, object: DebugRenderObject<'_>, color: DebugColor) -> DebugColor {
+        match self.tint(object) {
+            Some([hue, saturation, _, _]) => [hue, saturation, color[2], color[3]],
             None => color,
         }
     }
@@ -40,7 +44,7 @@ impl<B: DebugRenderBackend> Tinted<'_, B> {
 
 impl<B: DebugRenderBackend> DebugRenderBackend for Tinted<'_, B> {
     fn filter_object(&self, object: DebugRenderObject) -> bool {
-        self.backend.filter_object(object)
+        (!self.only_reached || self.tint(object).is_some()) && self.backend.filter_object(object)
     }
 
     fn draw_line(&mut self, object: DebugRenderObject, a: Vector, b: Vector, color: DebugColor) {

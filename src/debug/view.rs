@@ -120,16 +120,7 @@ impl RuleDebugRender {
         self.pipeline.render_rigid_bodies(backend, bodies);
         if self.tints {
             let mode = self.pipeline.mode;
-            self.pipeline.mode = mode & DebugRenderMode::COLLIDER_SHAPES;
-            let mut tinted = Tinted {
-                backend: &mut *backend,
-                hooks,
-                bodies,
-                colliders,
-                palette: &self.palette,
-                filter: &self.filter,
-            };
-            self.pipeline.render_colliders(&mut tinted, bodies, colliders);
+            self.render_shapes(backend, hooks, world, false);
             // Bounding boxes and pseudo-normals keep Rapier's colours.
             self.pipeline.mode = mode - DebugRenderMode::COLLIDER_SHAPES;
             self.pipeline.render_colliders(backend, bodies, colliders);
@@ -145,6 +136,44 @@ impl RuleDebugRender {
             self.pipeline.render_soft_bodies(backend, soft_bodies);
         }
         self.render_rules(backend, hooks, world);
+    }
+
+    /// Draws the tinted shapes of the colliders the rules reach (that the
+    /// filter keeps) and nothing else: for a project whose own debug
+    /// rendering draws Rapier's part (bevy_rapier's debug plugin), over
+    /// which these shapes lie. Drawn whatever [`tints`](Self::tints) says.
+    pub fn render_tints<'w>(
+        &mut self,
+        backend: &mut impl DebugRenderBackend,
+        hooks: &RuleHooks,
+        world: impl Into<WorldRef<'w>>,
+    ) {
+        self.render_shapes(backend, hooks, world.into(), true);
+    }
+
+    /// Rapier's drawing of the colliders' shapes, tinted: every collider's,
+    /// or only those the rules reach.
+    fn render_shapes(
+        &mut self,
+        backend: &mut impl DebugRenderBackend,
+        hooks: &RuleHooks,
+        world: WorldRef<'_>,
+        only_reached: bool,
+    ) {
+        let (bodies, colliders) = (world.bodies, world.colliders);
+        let mode = self.pipeline.mode;
+        self.pipeline.mode = DebugRenderMode::COLLIDER_SHAPES;
+        let mut tinted = Tinted {
+            backend,
+            hooks,
+            bodies,
+            colliders,
+            palette: &self.palette,
+            filter: &self.filter,
+            only_reached,
+        };
+        self.pipeline.render_colliders(&mut tinted, bodies, colliders);
+        self.pipeline.mode = mode;
     }
 
     /// Draws the rules alone (pairs and marks, no tints, nothing of

@@ -431,3 +431,27 @@ fn a_world_without_rules_is_drawn_exactly_as_rapier_draws_it() {
         );
     }
 }
+
+#[test]
+fn render_tints_draws_only_the_shapes_the_rules_reach() {
+    let s = ruled_scene();
+    let palette = RulePalette::default();
+    let mut view = RuleDebugRender::default();
+    let mut tints = Recorder::default();
+    view.render_tints(&mut tints, &s.hooks, &s.scene.world);
+    let mut full = Recorder::default();
+    view.render(&mut full, &s.hooks, &s.scene.world);
+    let rules = CollisionRule::ALL.map(|r| palette.rule(Some(r)).hsla(1.0));
+    // The same shape lines as the full view's, for the reached colliders.
+    let expected: Vec<&Line> = full
+        .lines
+        .iter()
+        .filter(|l| match l.object {
+            Object::Collider(c) => s.hooks.reach(c) != Reach::Unreached && !rules.contains(&l.hsla()),
+            _ => false,
+        })
+        .collect();
+    assert!(!expected.is_empty());
+    assert_eq!(tints.lines.iter().collect::<Vec<_>>(), expected);
+    assert!(tints.lines.iter().all(|l| l.object != Object::Collider(s.plain[0])));
+}

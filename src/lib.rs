@@ -28,7 +28,9 @@ macro_rules! dimension {
 
         pub use debug::{RuleColor, RulePalette};
         #[cfg(feature = "debug-render")]
-        pub use debug::{RuleDebugFilter, RuleDebugRender, RuleLabelBackend};
+        pub use debug::{
+            RuleDebugFilter, RuleDebugRender, RuleLabelBackend, RuleLine, RuleLineKind,
+        };
         pub use hooks::{
             CalculatorContext, FullPass, ManifoldUpdate, PairCreated, PlanCause, Reach,
             RecalculationPolicy, RuleChange, RuleEvent, RuleEventHandler, RuleHooks, StepStats,

@@ -33,4 +33,4 @@ pub use filter::RuleDebugFilter;
 #[cfg(feature = "debug-render")]
 pub use label::RuleLabelBackend;
 #[cfg(feature = "debug-render")]
-pub use view::RuleDebugRender;
+pub use view::{RuleDebugRender, RuleLine, RuleLineKind};

@@ -151,7 +151,10 @@ mod tests {
     #[test]
     fn every_rule_and_reach_has_its_own_colour() {
         let p = RulePalette::default();
-        let mut colours: Vec<RuleColor> = CollisionRule::ALL.iter().map(|&r| p.rule(Some(r))).collect();
+        let mut colours: Vec<RuleColor> = CollisionRule::ALL
+            .iter()
+            .map(|&r| p.rule(Some(r)))
+            .collect();
         colours.extend([p.not_live, p.planned, p.hooked, p.overridden, p.ending]);
         let mut unique = colours.clone();
         unique.sort_by_key(|c| (c.0, c.1, c.2));

@@ -30,8 +30,13 @@ impl<B: DebugRenderBackend> Tinted<'_, B> {
         };
         let reach = self.hooks.reach(handle);
         let tinted = self.filter.tints(reach)
-            && self.filter.holds(self.hooks.rules(), self.bodies, self.colliders, handle);
-        self.palette.reach(reach).filter(|_| tinted).map(|tint| tint.hsla(1.0))
+            && self
+                .filter
+                .holds(self.hooks.rules(), self.bodies, self.colliders, handle);
+        self.palette
+            .reach(reach)
+            .filter(|_| tinted)
+            .map(|tint| tint.hsla(1.0))
     }
 
     fn color(&self, object: DebugRenderObject<'_>, color: DebugColor) -> DebugColor {
@@ -62,7 +67,8 @@ impl<B: DebugRenderBackend> DebugRenderBackend for Tinted<'_, B> {
         color: DebugColor,
     ) {
         let color = self.color(object, color);
-        self.backend.draw_polyline(object, vertices, indices, transform, scale, color);
+        self.backend
+            .draw_polyline(object, vertices, indices, transform, scale, color);
     }
 
     fn draw_line_strip(
@@ -75,6 +81,7 @@ impl<B: DebugRenderBackend> DebugRenderBackend for Tinted<'_, B> {
         closed: bool,
     ) {
         let color = self.color(object, color);
-        self.backend.draw_line_strip(object, vertices, transform, scale, color, closed);
+        self.backend
+            .draw_line_strip(object, vertices, transform, scale, color, closed);
     }
 }

@@ -5,7 +5,7 @@
 use super::super::rapier::prelude::*;
 
 use super::super::hooks::{PairReach, WorldRef};
-use super::super::RuleHooks;
+use super::super::{CollisionRule, RuleHooks};
 use super::label::label_text;
 use super::tint::Tinted;
 use super::{RuleDebugFilter, RuleLabelBackend, RulePalette};
@@ -129,9 +129,11 @@ impl RuleDebugRender {
             self.pipeline.render_colliders(backend, bodies, colliders);
         }
         if let Some(joints) = world.joints {
-            self.pipeline.render_joints(backend, bodies, joints.impulse, joints.multibody);
+            self.pipeline
+                .render_joints(backend, bodies, joints.impulse, joints.multibody);
         }
-        self.pipeline.render_contacts(backend, colliders, world.narrow_phase);
+        self.pipeline
+            .render_contacts(backend, colliders, world.narrow_phase);
         if let Some(soft_bodies) = world.soft_bodies {
             self.pipeline.render_soft_bodies(backend, soft_bodies);
         }
@@ -172,7 +174,8 @@ impl RuleDebugRender {
             filter: &self.filter,
             only_reached,
         };
-        self.pipeline.render_colliders(&mut tinted, bodies, colliders);
+        self.pipeline
+            .render_colliders(&mut tinted, bodies, colliders);
         self.pipeline.mode = mode;
     }
 
@@ -189,34 +192,91 @@ impl RuleDebugRender {
         }
         let world = world.into();
         self.for_each_pair(hooks, world, |object, line, reach| {
-            if !backend.filter_object(object) {
-                return;
-            }
-            if self.pairs {
-                let color = self.palette.rule(Some(reach.rule)).hsla(1.0);
-                backend.draw_line(object, line.from, line.to, color);
-            }
-            if self.marks {
-                let middle = line.middle();
-                if reach.overridden {
-                    let color = self.palette.overridden.hsla(1.0);
-                    for axis in 0..DIM {
-                        let mut stroke = Vector::ZERO;
-                        stroke[axis] = self.mark_size * 0.5;
-                        backend.draw_line(object, middle - stroke, middle + stroke, color);
-                    }
-                }
-                if reach.ending {
-                    let color = self.palette.ending.hsla(1.0);
-                    let half = self.mark_size * 0.5 * std::f32::consts::FRAC_1_SQRT_2;
-                    let (mut x, mut y) = (Vector::ZERO, Vector::ZERO);
-                    (x[0], y[1]) = (half, half);
-                    for stroke in [x + y, x - y] {
-                        backend.draw_line(object, middle - stroke, middle + stroke, color);
-                    }
-                }
+            if backend.filter_object(object) {
+                self.strokes(line, reach, |stroke| {
+                    backend.draw_line(object, stroke.from, stroke.to, stroke.color);
+                });
             }
         });
+    }
+
+    /// Each line [`render_rules`](Self::render_rules) draws, with the pair
+    /// it is drawn for, for a project that draws them its own way (the Bevy
+    /// debug plugin names each pair's entities): no backend is asked.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleDebugRender, RuleHooks, RuleLineKind};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed());
+    /// let floor = world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+    /// let body = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 0.9, 0.0)));
+    /// let ball = world.insert_collider(ColliderBuilder::ball(0.5), Some(body));
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_personal(body, CollisionRule::NoContacts);
+    /// hooks.step(&mut world);
+    ///
+    /// let mut lines = Vec::new();
+    /// RuleDebugRender::default().rule_lines(&hooks, &world, |line| lines.push(line));
+    /// assert_eq!(lines.len(), 1);
+    /// assert_eq!(lines[0].kind, RuleLineKind::Pair(CollisionRule::NoContacts));
+    /// assert!([lines[0].collider1, lines[0].collider2] == [ball, floor]
+    ///     || [lines[0].collider1, lines[0].collider2] == [floor, ball]);
+    /// ```
+    pub fn rule_lines<'w>(
+        &self,
+        hooks: &RuleHooks,
+        world: impl Into<WorldRef<'w>>,
+        mut line: impl FnMut(RuleLine),
+    ) {
+        if !self.pairs && !self.marks {
+            return;
+        }
+        self.for_each_pair(hooks, world.into(), |_, segment, reach| {
+            self.strokes(segment, reach, &mut line);
+        });
+    }
+
+    /// The strokes of one pair: its line, then its marks.
+    fn strokes(&self, line: Segment, reach: PairReach, mut stroke: impl FnMut(RuleLine)) {
+        let mut emit = |from: Vector, to: Vector, kind: RuleLineKind| {
+            let color = match kind {
+                RuleLineKind::Pair(rule) => self.palette.rule(Some(rule)),
+                RuleLineKind::Override => self.palette.overridden,
+                RuleLineKind::Ending => self.palette.ending,
+            };
+            stroke(RuleLine {
+                collider1: line.a,
+                collider2: line.b,
+                from,
+                to,
+                color: color.hsla(1.0),
+                kind,
+            });
+        };
+        if self.pairs {
+            emit(line.from, line.to, RuleLineKind::Pair(reach.rule));
+        }
+        if !self.marks {
+            return;
+        }
+        let middle = line.middle();
+        if reach.overridden {
+            for axis in 0..DIM {
+                let mut half = Vector::ZERO;
+                half[axis] = self.mark_size * 0.5;
+                emit(middle - half, middle + half, RuleLineKind::Override);
+            }
+        }
+        if reach.ending {
+            let half = self.mark_size * 0.5 * std::f32::consts::FRAC_1_SQRT_2;
+            let (mut x, mut y) = (Vector::ZERO, Vector::ZERO);
+            (x[0], y[1]) = (half, half);
+            for diagonal in [x + y, x - y] {
+                emit(middle - diagonal, middle + diagonal, RuleLineKind::Ending);
+            }
+        }
     }
 
     /// Hands `backend` one label per pair the view draws, at the middle of
@@ -263,7 +323,9 @@ impl RuleDebugRender {
     ) {
         let world = world.into();
         self.for_each_pair(hooks, world, |_, line, reach| {
-            let why = hooks.rules().explain(world.bodies, world.colliders, line.a, line.b);
+            let why = hooks
+                .rules()
+                .explain(world.bodies, world.colliders, line.a, line.b);
             let text = label_text(&reach, &why);
             let color = self.palette.rule(Some(reach.rule)).hsla(1.0);
             backend.draw_label(line.middle(), &text, color);
@@ -300,6 +362,35 @@ impl RuleDebugRender {
             draw(object, Segment { a, b, from, to }, pair);
         }
     }
+}
+
+/// One line the rules' part of the view draws: what
+/// [`RuleDebugRender::rule_lines`] hands over.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RuleLine {
+    /// The pair's first collider, in Rapier's order.
+    pub collider1: ColliderHandle,
+    /// The pair's second collider.
+    pub collider2: ColliderHandle,
+    /// Where the line starts.
+    pub from: Vector,
+    /// Where it ends.
+    pub to: Vector,
+    /// Its colour, HSLA as Rapier's debug colours.
+    pub color: [f32; 4],
+    /// What it shows.
+    pub kind: RuleLineKind,
+}
+
+/// What a [`RuleLine`] shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RuleLineKind {
+    /// The pair, between its colliders' centres, in its rule's colour.
+    Pair(CollisionRule),
+    /// A stroke of the mark of an override, at the middle of the pair's line.
+    Override,
+    /// A stroke of the mark of a rule with an end.
+    Ending,
 }
 
 /// A drawn pair's colliders and the centres of their boxes, where its

@@ -20,6 +20,8 @@
 //!   live pairs; [`CollisionRulesHooks`] is bevy_rapier's hooks.
 //! - With [`CollisionRulesPlugin::with_rule_events`], what changes for
 //!   live pairs comes as [`CollisionRuleEvent`] messages.
+//! - With the feature `debug-render`, `CollisionRulesDebugPlugin` draws
+//!   the rules with Bevy's gizmos, beside bevy_rapier's debug rendering.
 //!
 //! ```
 //! use bevy::prelude::*;
@@ -77,6 +79,8 @@ use rapier_collision_rules::dim2 as collision_rules;
 use rapier_collision_rules::dim3 as collision_rules;
 
 mod components;
+#[cfg(feature = "debug-render")]
+mod debug;
 mod edits;
 mod hierarchy;
 mod hooks;
@@ -91,6 +95,10 @@ mod step;
 mod table;
 
 pub use components::{OneWaySurface, PersonalRule, RuleGroup, SpecificRules};
+#[cfg(feature = "debug-render")]
+pub use debug::{
+    CollisionRulesDebug, CollisionRulesDebugPlugin, RuleDebugLine, RuleDebugLines, RuleDebugObject,
+};
 pub use hooks::{CollisionRulesHooks, HookedPair};
 pub use plugin::{CollisionRulesPlugin, RulesSystems};
 pub use queries::{ControllerFollowsRules, EntityExplanation, RuleQueries};
@@ -103,9 +111,9 @@ pub use table::{ContextRuleTable, RuleTable};
 /// everything [`CollisionRules`] and its [`RuleHooks`] take and give.
 pub use collision_rules::{
     CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
-    GroupTable, ManifoldUpdate, Node, OneWay, OneWayKind, PairCreated, Problem,
-    RecalculationPolicy, RuleChange, RuleError, RuleEvent, RuleEventHandler, RuleHooks, Stage,
-    StepStats, Until, WorldRef,
+    GroupTable, ManifoldUpdate, Node, OneWay, OneWayKind, PairCreated, Problem, Reach,
+    RecalculationPolicy, RuleChange, RuleColor, RuleError, RuleEvent, RuleEventHandler, RuleHooks,
+    RulePalette, Stage, StepStats, Until, WorldRef,
 };
 /// The main crate, for what is not re-exported here (its dimension's
 /// module, its Rapier).
@@ -119,8 +127,10 @@ pub mod prelude {
         CollisionGroup, CollisionRule, CollisionRuleEvent, CollisionRules, CollisionRulesHooks,
         CollisionRulesPlugin, ContextRuleTable, ControllerFollowsRules, ManifoldUpdate, OneWay,
         OneWayKind, OneWaySurface, PersonalRule, RecalculationPolicy, RuleChange, RuleEvent,
-        RuleGroup, RuleHooks, RuleQueries, RuleTable, SpecificRules, Until, WorldRef,
+        RuleGroup, RuleHooks, RulePalette, RuleQueries, RuleTable, SpecificRules, Until, WorldRef,
     };
+    #[cfg(feature = "debug-render")]
+    pub use super::{CollisionRulesDebug, CollisionRulesDebugPlugin, RuleDebugLines};
 }
 
 /// `docs/bevy.md`, whose Rust snippets `cargo test --doc` compiles and

@@ -16,6 +16,8 @@ extern crate bevy_rapier_collision_rules2d as bevy_rapier_collision_rules;
 mod dimension;
 
 mod contexts;
+#[cfg(feature = "debug-render")]
+mod debug_view;
 mod edits;
 mod elevator;
 mod endings;

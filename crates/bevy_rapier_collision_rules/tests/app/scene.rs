@@ -51,7 +51,8 @@ impl Sim {
         Sim::from_plugins(RapierPhysicsPlugin::<()>::default())
     }
 
-    fn from_plugins<M>(physics: impl Plugins<M>) -> Sim {
+    /// An app with these plugins besides the minimal ones.
+    pub fn from_plugins<M>(physics: impl Plugins<M>) -> Sim {
         let mut app = App::new();
         app.add_plugins((MinimalPlugins, TransformPlugin))
             .add_plugins(physics)

@@ -115,18 +115,34 @@ impl RuleDebugRender {
         world: impl Into<WorldRef<'w>>,
     ) {
         let world = world.into();
+        if hooks.reaches_nothing() {
+            // Nothing to tint or draw: Rapier's drawing alone.
+            return self.render_rapier(backend, None, world);
+        }
+        self.render_rapier(backend, Some(hooks).filter(|_| self.tints), world);
+        self.render_rules(backend, hooks, world);
+    }
+
+    /// What Rapier's `render` draws of `world`, part by part in its order,
+    /// with the shapes tinted by `tinted`'s reach.
+    fn render_rapier(
+        &mut self,
+        backend: &mut impl DebugRenderBackend,
+        tinted: Option<&RuleHooks>,
+        world: WorldRef<'_>,
+    ) {
         let (bodies, colliders) = (world.bodies, world.colliders);
-        // Rapier's `render`, part by part, in its order.
         self.pipeline.render_rigid_bodies(backend, bodies);
-        if self.tints {
-            let mode = self.pipeline.mode;
-            self.render_shapes(backend, hooks, world, false);
-            // Bounding boxes and pseudo-normals keep Rapier's colours.
-            self.pipeline.mode = mode - DebugRenderMode::COLLIDER_SHAPES;
-            self.pipeline.render_colliders(backend, bodies, colliders);
-            self.pipeline.mode = mode;
-        } else {
-            self.pipeline.render_colliders(backend, bodies, colliders);
+        match tinted {
+            Some(hooks) => {
+                let mode = self.pipeline.mode;
+                self.render_shapes(backend, hooks, world, false);
+                // Bounding boxes and pseudo-normals keep Rapier's colours.
+                self.pipeline.mode = mode - DebugRenderMode::COLLIDER_SHAPES;
+                self.pipeline.render_colliders(backend, bodies, colliders);
+                self.pipeline.mode = mode;
+            }
+            None => self.pipeline.render_colliders(backend, bodies, colliders),
         }
         if let Some(joints) = world.joints {
             self.pipeline
@@ -137,7 +153,6 @@ impl RuleDebugRender {
         if let Some(soft_bodies) = world.soft_bodies {
             self.pipeline.render_soft_bodies(backend, soft_bodies);
         }
-        self.render_rules(backend, hooks, world);
     }
 
     /// Draws the tinted shapes of the colliders the rules reach (that the
@@ -343,7 +358,7 @@ impl RuleDebugRender {
     ) {
         let (bodies, colliders) = (world.bodies, world.colliders);
         let rules = hooks.rules();
-        for (a, b, pair) in hooks.reached_pairs(world) {
+        for (a, b, contact, pair) in hooks.reached_pairs(world) {
             if !self.filter.shows(pair.rule, pair.hooked) {
                 continue;
             }
@@ -354,7 +369,7 @@ impl RuleDebugRender {
             let (Some(ca), Some(cb)) = (colliders.get(a), colliders.get(b)) else {
                 continue;
             };
-            let object = match world.narrow_phase.contact_pair(a, b) {
+            let object = match contact {
                 Some(contact) => DebugRenderObject::ContactPair(contact, ca, cb),
                 None => DebugRenderObject::Collider(a, ca),
             };

@@ -8,6 +8,7 @@ use super::super::rapier::prelude::*;
 
 use super::super::CollisionRule;
 use super::super::resolve::Stage;
+use super::super::world::filters_pass;
 use super::{PairKey, RuleHooks, WorldRef};
 
 /// How the rules reach a collider, as of the plan the last step ran with:
@@ -76,36 +77,85 @@ impl RuleHooks {
         }
     }
 
+    /// Whether the rules reach no collider and no pair: the debug view
+    /// then draws what Rapier draws and nothing else.
+    pub(crate) fn reaches_nothing(&self) -> bool {
+        self.planned.roster.collider_count() == 0 && self.pairs.is_empty()
+    }
+
     /// The live pairs Rapier holds now that the rules reach (a collider of
     /// the pair is planned or hooked, or the hooks keep state for it), with
-    /// what the debug view draws of each, in Rapier's graph order; pairs of
-    /// two unreached colliders are plain Rapier and left out.
-    pub(crate) fn reached_pairs<'a>(
-        &'a self,
-        world: WorldRef<'a>,
-    ) -> impl Iterator<Item = (ColliderHandle, ColliderHandle, PairReach)> + 'a {
+    /// Rapier's contact pair (none for a sensor pair) and what the debug
+    /// view draws of each, in Rapier's graph order: contact pairs, then
+    /// sensor pairs. Pairs of two unreached colliders are plain Rapier and
+    /// cost two look-ups each.
+    pub(crate) fn reached_pairs<'s, 'w>(
+        &'s self,
+        world: WorldRef<'w>,
+    ) -> impl Iterator<
+        Item = (
+            ColliderHandle,
+            ColliderHandle,
+            Option<&'w ContactPair>,
+            PairReach,
+        ),
+    > + use<'s, 'w> {
         let ends = self.has_ends();
-        self.held_pairs(world).filter_map(move |(a, b)| {
-            let state = self.pairs.get(PairKey::new(a, b));
+        let tracked = !self.pairs.is_empty();
+        let contacts = world
+            .narrow_phase
+            .contact_pairs()
+            .map(|pair| (pair.collider1, pair.collider2, Some(pair)));
+        let sensors = world
+            .narrow_phase
+            .intersection_pairs()
+            .map(|(a, b, _)| (a, b, None));
+        contacts.chain(sensors).filter_map(move |(a, b, contact)| {
             let reached = [a, b].map(|c| self.reach(c));
+            let state = if tracked {
+                self.pairs.get(PairKey::new(a, b))
+            } else {
+                None
+            };
             if state.is_none() && reached == [Reach::Unreached; 2] {
                 return None;
             }
-            let rule = self.held_rule(world, a, b, || self.resolve(world.bodies, world.colliders, a, b));
+            if !filters_pass(world.bodies, world.colliders, world.joints, a, b) {
+                return None;
+            }
+            let rule = self.held_rule(world, a, b, || {
+                self.resolve(world.bodies, world.colliders, a, b)
+            });
             if rule == CollisionRule::NoPair {
                 return None;
             }
             let overridden = state.is_some_and(|s| s.overridden.is_some());
             let ending = ends && self.pair_ends(world, a, b, overridden);
             let hooked = state.is_some_and(|s| !s.absent) || reached.contains(&Reach::Hooked);
-            Some((a, b, PairReach { rule, hooked, overridden, ending }))
+            Some((
+                a,
+                b,
+                contact,
+                PairReach {
+                    rule,
+                    hooked,
+                    overridden,
+                    ending,
+                },
+            ))
         })
     }
 
     /// Whether the rule of a live pair ends: its override's end, else the
     /// end of the specific entry that decides it (either way round, as the
     /// specific stage reads both).
-    fn pair_ends(&self, world: WorldRef<'_>, a: ColliderHandle, b: ColliderHandle, overridden: bool) -> bool {
+    fn pair_ends(
+        &self,
+        world: WorldRef<'_>,
+        a: ColliderHandle,
+        b: ColliderHandle,
+        overridden: bool,
+    ) -> bool {
         if overridden {
             return self.pair_ends.contains_key(&PairKey::new(a, b));
         }

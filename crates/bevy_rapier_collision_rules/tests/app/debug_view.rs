@@ -68,6 +68,14 @@ fn lines(sim: &mut Sim, context: Entity) -> Vec<RuleDebugLine> {
         .to_vec()
 }
 
+/// A context's view settings, to change at runtime.
+fn view(sim: &mut Sim, context: Entity) -> Mut<'_, CollisionRulesDebug> {
+    sim.app
+        .world_mut()
+        .get_mut::<CollisionRulesDebug>(context)
+        .expect("the plugin gives every context its view")
+}
+
 fn pair_lines(lines: &[RuleDebugLine], a: Entity, b: Entity) -> Vec<RuleDebugLine> {
     lines
         .iter()
@@ -148,12 +156,7 @@ fn the_view_is_toggled_and_filtered_per_context_at_runtime() {
     assert!(!lines(&mut s.sim, first).is_empty());
     assert!(!lines(&mut s.sim, second).is_empty());
 
-    s.sim
-        .app
-        .world_mut()
-        .get_mut::<CollisionRulesDebug>(first)
-        .unwrap()
-        .enabled = false;
+    view(&mut s.sim, first).enabled = false;
     s.sim.run(1);
     assert!(
         lines(&mut s.sim, first).is_empty(),
@@ -166,12 +169,7 @@ fn the_view_is_toggled_and_filtered_per_context_at_runtime() {
 
     // Back on, for one ball only, pairs without tints.
     {
-        let mut debug = s
-            .sim
-            .app
-            .world_mut()
-            .get_mut::<CollisionRulesDebug>(first)
-            .unwrap();
+        let mut debug = view(&mut s.sim, first);
         debug.enabled = true;
         debug.entity = Some(s.balls[1].1);
         debug.tints = false;
@@ -183,12 +181,7 @@ fn the_view_is_toggled_and_filtered_per_context_at_runtime() {
 
     // One rule.
     {
-        let mut debug = s
-            .sim
-            .app
-            .world_mut()
-            .get_mut::<CollisionRulesDebug>(first)
-            .unwrap();
+        let mut debug = view(&mut s.sim, first);
         debug.entity = None;
         debug.rule = Some(Normal);
     }
@@ -220,11 +213,7 @@ fn a_plugin_that_starts_off_draws_nothing_until_turned_on() {
             .map(|d| d.enabled),
         Some(false)
     );
-    sim.app
-        .world_mut()
-        .get_mut::<CollisionRulesDebug>(context)
-        .unwrap()
-        .enabled = true;
+    view(&mut sim, context).enabled = true;
     sim.run(1);
     let drawn = lines(&mut sim, context);
     assert!(

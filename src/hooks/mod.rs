@@ -53,6 +53,7 @@ pub(crate) use super::world::PairKey;
 pub use stats::{FullPass, PlanCause, StepStats};
 pub use live::WorldRef;
 pub use reach::Reach;
+#[cfg(feature = "debug-render")]
 pub(crate) use reach::PairReach;
 pub use rule_events::{RuleChange, RuleEvent, RuleEventHandler};
 use roster::Roster;

@@ -6,10 +6,7 @@
 
 use super::super::rapier::prelude::*;
 
-use super::super::CollisionRule;
-use super::super::resolve::Stage;
-use super::super::world::filters_pass;
-use super::{PairKey, RuleHooks, WorldRef};
+use super::RuleHooks;
 
 /// How the rules reach a collider, as of the plan the last step ran with:
 /// what [`RuleHooks::reach`] answers.
@@ -46,20 +43,6 @@ pub enum Reach {
     Hooked,
 }
 
-/// What the debug view draws of one live pair the rules reach.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct PairReach {
-    pub(crate) rule: CollisionRule,
-    /// The hook answers it (one of its colliders is hooked, or the hooks
-    /// keep state for it).
-    pub(crate) hooked: bool,
-    /// Its rule was given with `set_pair_rule`.
-    pub(crate) overridden: bool,
-    /// Its rule ends: an override with an end, or a specific entry with an
-    /// end that decides it.
-    pub(crate) ending: bool,
-}
-
 /// How the rules reach colliders and pairs.
 impl RuleHooks {
     /// How the rules reach `collider`, as of the plan the last step (or
@@ -76,96 +59,128 @@ impl RuleHooks {
             None => Reach::Unreached,
         }
     }
+}
 
-    /// Whether the rules reach no collider and no pair: the debug view
-    /// then draws what Rapier draws and nothing else.
-    pub(crate) fn reaches_nothing(&self) -> bool {
-        self.planned.roster.collider_count() == 0 && self.pairs.is_empty()
+/// What the debug view asks of the live pairs (feature `debug-render`).
+#[cfg(feature = "debug-render")]
+mod drawn {
+    use super::super::super::rapier::prelude::*;
+
+    use super::super::super::CollisionRule;
+    use super::super::super::resolve::Stage;
+    use super::super::super::world::filters_pass;
+    use super::super::{PairKey, RuleHooks, WorldRef};
+    use super::Reach;
+
+    /// What the debug view draws of one live pair the rules reach.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub(crate) struct PairReach {
+        pub(crate) rule: CollisionRule,
+        /// The hook answers it (one of its colliders is hooked, or the hooks
+        /// keep state for it).
+        pub(crate) hooked: bool,
+        /// Its rule was given with `set_pair_rule`.
+        pub(crate) overridden: bool,
+        /// Its rule ends: an override with an end, or a specific entry with an
+        /// end that decides it.
+        pub(crate) ending: bool,
     }
 
-    /// The live pairs Rapier holds now that the rules reach (a collider of
-    /// the pair is planned or hooked, or the hooks keep state for it), with
-    /// Rapier's contact pair (none for a sensor pair) and what the debug
-    /// view draws of each, in Rapier's graph order: contact pairs, then
-    /// sensor pairs. Pairs of two unreached colliders are plain Rapier and
-    /// cost two look-ups each.
-    pub(crate) fn reached_pairs<'s, 'w>(
-        &'s self,
-        world: WorldRef<'w>,
-    ) -> impl Iterator<
-        Item = (
-            ColliderHandle,
-            ColliderHandle,
-            Option<&'w ContactPair>,
-            PairReach,
-        ),
-    > + use<'s, 'w> {
-        let ends = self.has_ends();
-        let tracked = !self.pairs.is_empty();
-        let contacts = world
-            .narrow_phase
-            .contact_pairs()
-            .map(|pair| (pair.collider1, pair.collider2, Some(pair)));
-        let sensors = world
-            .narrow_phase
-            .intersection_pairs()
-            .map(|(a, b, _)| (a, b, None));
-        contacts.chain(sensors).filter_map(move |(a, b, contact)| {
-            let reached = [a, b].map(|c| self.reach(c));
-            let state = if tracked {
-                self.pairs.get(PairKey::new(a, b))
-            } else {
-                None
-            };
-            if state.is_none() && reached == [Reach::Unreached; 2] {
-                return None;
-            }
-            if !filters_pass(world.bodies, world.colliders, world.joints, a, b) {
-                return None;
-            }
-            let rule = self.held_rule(world, a, b, || {
-                self.resolve(world.bodies, world.colliders, a, b)
-            });
-            if rule == CollisionRule::NoPair {
-                return None;
-            }
-            let overridden = state.is_some_and(|s| s.overridden.is_some());
-            let ending = ends && self.pair_ends(world, a, b, overridden);
-            let hooked = state.is_some_and(|s| !s.absent) || reached.contains(&Reach::Hooked);
-            Some((
-                a,
-                b,
-                contact,
-                PairReach {
-                    rule,
-                    hooked,
-                    overridden,
-                    ending,
-                },
-            ))
-        })
-    }
-
-    /// Whether the rule of a live pair ends: its override's end, else the
-    /// end of the specific entry that decides it (either way round, as the
-    /// specific stage reads both).
-    fn pair_ends(
-        &self,
-        world: WorldRef<'_>,
-        a: ColliderHandle,
-        b: ColliderHandle,
-        overridden: bool,
-    ) -> bool {
-        if overridden {
-            return self.pair_ends.contains_key(&PairKey::new(a, b));
+    /// The pairs the debug view draws.
+    impl RuleHooks {
+        /// Whether the rules reach no collider and no pair: the debug view
+        /// then draws what Rapier draws and nothing else.
+        pub(crate) fn reaches_nothing(&self) -> bool {
+            self.planned.roster.collider_count() == 0 && self.pairs.is_empty()
         }
-        let rules = &self.decide.rules;
-        let why = rules.explain(world.bodies, world.colliders, a, b);
-        match (why.stage, why.nodes) {
-            (Stage::Specific, Some((x, y))) => {
-                rules.specific_until(x, y).is_some() || rules.specific_until(y, x).is_some()
+
+        /// The live pairs Rapier holds now that the rules reach (a collider of
+        /// the pair is planned or hooked, or the hooks keep state for it), with
+        /// Rapier's contact pair (none for a sensor pair) and what the debug
+        /// view draws of each, in Rapier's graph order: contact pairs, then
+        /// sensor pairs. Pairs of two unreached colliders are plain Rapier and
+        /// cost two look-ups each.
+        pub(crate) fn reached_pairs<'s, 'w>(
+            &'s self,
+            world: WorldRef<'w>,
+        ) -> impl Iterator<
+            Item = (
+                ColliderHandle,
+                ColliderHandle,
+                Option<&'w ContactPair>,
+                PairReach,
+            ),
+        > + use<'s, 'w> {
+            let ends = self.has_ends();
+            let tracked = !self.pairs.is_empty();
+            let contacts = world
+                .narrow_phase
+                .contact_pairs()
+                .map(|pair| (pair.collider1, pair.collider2, Some(pair)));
+            let sensors = world
+                .narrow_phase
+                .intersection_pairs()
+                .map(|(a, b, _)| (a, b, None));
+            contacts.chain(sensors).filter_map(move |(a, b, contact)| {
+                let reached = [a, b].map(|c| self.reach(c));
+                let state = if tracked {
+                    self.pairs.get(PairKey::new(a, b))
+                } else {
+                    None
+                };
+                if state.is_none() && reached == [Reach::Unreached; 2] {
+                    return None;
+                }
+                if !filters_pass(world.bodies, world.colliders, world.joints, a, b) {
+                    return None;
+                }
+                let rule = self.held_rule(world, a, b, || {
+                    self.resolve(world.bodies, world.colliders, a, b)
+                });
+                if rule == CollisionRule::NoPair {
+                    return None;
+                }
+                let overridden = state.is_some_and(|s| s.overridden.is_some());
+                let ending = ends && self.pair_ends(world, a, b, overridden);
+                let hooked = state.is_some_and(|s| !s.absent) || reached.contains(&Reach::Hooked);
+                Some((
+                    a,
+                    b,
+                    contact,
+                    PairReach {
+                        rule,
+                        hooked,
+                        overridden,
+                        ending,
+                    },
+                ))
+            })
+        }
+
+        /// Whether the rule of a live pair ends: its override's end, else the
+        /// end of the specific entry that decides it (either way round, as the
+        /// specific stage reads both).
+        fn pair_ends(
+            &self,
+            world: WorldRef<'_>,
+            a: ColliderHandle,
+            b: ColliderHandle,
+            overridden: bool,
+        ) -> bool {
+            if overridden {
+                return self.pair_ends.contains_key(&PairKey::new(a, b));
             }
-            _ => false,
+            let rules = &self.decide.rules;
+            let why = rules.explain(world.bodies, world.colliders, a, b);
+            match (why.stage, why.nodes) {
+                (Stage::Specific, Some((x, y))) => {
+                    rules.specific_until(x, y).is_some() || rules.specific_until(y, x).is_some()
+                }
+                _ => false,
+            }
         }
     }
 }
+
+#[cfg(feature = "debug-render")]
+pub(crate) use drawn::PairReach;

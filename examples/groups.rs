@@ -1,11 +1,17 @@
 //! A game's collision table with groups: players, enemies, projectiles and
 //! debris. Prints the table as `resolve` decides it and checks each entry,
-//! then drops debris on a player to show it in a world.
+//! draws it as a matrix (`docs/group_matrix.svg`, as Unity's layer
+//! collision matrix shows its layers), then drops debris on a player to show
+//! it in a world.
 //!
 //! `cargo run --example groups`
 
+use std::fmt::Write as _;
+
 use approx::abs_diff_eq;
-use rapier_collision_rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleHooks};
+use rapier_collision_rules::{
+    CollisionGroup, CollisionRule, CollisionRuleSet, RuleColor, RuleHooks, RulePalette, Stage,
+};
 use rapier3d::prelude::*;
 
 /// The game's groups and their table: players, enemies, projectiles, debris.
@@ -46,6 +52,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         [Normal, Normal, NoPair, NoPair],
         [NoPair, Normal, NoPair, Normal],
     ];
+    // Each cell of the matrix: the rule `resolve` gives, and the later stage
+    // that decided it if the table has no entry for the two groups.
+    let groups = [players, enemies, projectiles, debris];
+    let mut cells = Vec::new();
     print!("{:>12}", "");
     for name in names {
         print!("{name:>12}");
@@ -57,6 +67,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             // The second member of group i against the first of group j.
             let got = rules.resolve(&bodies, &colliders, handles[2 * i + 1], handles[2 * j]);
             print!("{:>12}", format!("{got:?}"));
+            // No entry (`Defer`): say which later stage decided.
+            let later = (rules.group_rule(groups[i], groups[j]) == Defer).then(|| {
+                let why = rules.explain(&bodies, &colliders, handles[2 * i + 1], handles[2 * j]);
+                match why.stage {
+                    Stage::Specific => "specific rule",
+                    Stage::Personal => "personal rule",
+                    Stage::Group => "group table",
+                    Stage::Default => "default",
+                }
+            });
+            cells.push((i, j, got, later));
             if got != want {
                 return Err(
                     format!("{} vs {}: {got:?}, expected {want:?}", names[i], names[j]).into(),
@@ -65,6 +86,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         println!();
     }
+
+    // The table as a picture, regenerated with the README's other pictures.
+    let svg = matrix(&["players", "enemies", "projectiles", "debris"], &cells);
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = root.join("target/groups");
+    std::fs::create_dir_all(&out)?;
+    std::fs::write(out.join("group_matrix.svg"), &svg)?;
+    let docs = root.join("docs");
+    std::fs::create_dir_all(&docs)?;
+    std::fs::write(docs.join("group_matrix.svg"), &svg)?;
+    println!(
+        "the matrix: {} (and docs/group_matrix.svg)",
+        out.join("group_matrix.svg").display()
+    );
 
     // In a world: debris falls through a standing player onto the ground. A
     // rule set belongs to one world (its rules are keyed by the world's
@@ -100,6 +135,112 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         world.colliders.len()
     );
     Ok(())
+}
+
+/// Black or white, whichever reads better on `fill`.
+fn ink_on(fill: RuleColor) -> &'static str {
+    let luminance =
+        0.2126 * f32::from(fill.0) + 0.7152 * f32::from(fill.1) + 0.0722 * f32::from(fill.2);
+    if luminance < 140.0 {
+        "#ffffff"
+    } else {
+        "#111111"
+    }
+}
+
+/// The group table as a matrix, one row and one column per group, each cell
+/// in the palette's colour of the rule a collider of the row's group gets
+/// against one of the column's. The full square is drawn (not Unity's
+/// triangle): the table is symmetric, and a row reads as everything one
+/// group does. A cell without a table entry names the later stage its rule
+/// came from (here the default).
+fn matrix(names: &[&str], cells: &[(usize, usize, CollisionRule, Option<&str>)]) -> String {
+    let palette = RulePalette::default();
+    let (cell_w, cell_h, left, top) = (150.0, 60.0, 130.0, 92.0);
+    let n = names.len() as f32;
+    let (width, height) = (left + n * cell_w + 30.0, top + n * cell_h + 100.0);
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="DejaVu Sans, Helvetica, Arial, sans-serif">"#
+    );
+    let _ = writeln!(
+        svg,
+        r##"<rect width="100%" height="100%" fill="#ffffff"/>"##
+    );
+    let _ = writeln!(
+        svg,
+        r##"<text x="16" y="26" font-size="16" font-weight="bold" fill="#111111">The group table as a matrix</text>
+<text x="16" y="46" font-size="12" fill="#444444">each cell: the rule resolve gives a collider of the row's group against one of the column's</text>"##
+    );
+    for (k, name) in names.iter().enumerate() {
+        let k = k as f32;
+        let _ = writeln!(
+            svg,
+            r##"<text x="{}" y="{}" font-size="13" font-weight="bold" text-anchor="middle" fill="#111111">{name}</text>"##,
+            left + (k + 0.5) * cell_w,
+            top - 10.0
+        );
+        let _ = writeln!(
+            svg,
+            r##"<text x="{}" y="{}" font-size="13" font-weight="bold" text-anchor="end" fill="#111111">{name}</text>"##,
+            left - 10.0,
+            top + (k + 0.5) * cell_h + 5.0
+        );
+    }
+    for &(i, j, rule, later) in cells {
+        let (x, y) = (left + j as f32 * cell_w, top + i as f32 * cell_h);
+        let fill = palette.rule(Some(rule));
+        let ink = ink_on(fill);
+        let _ = writeln!(
+            svg,
+            r##"<rect x="{x}" y="{y}" width="{cell_w}" height="{cell_h}" fill="{}" stroke="#ffffff" stroke-width="2"/>"##,
+            fill.hex()
+        );
+        let (cx, cy) = (x + cell_w / 2.0, y + cell_h / 2.0);
+        if let Some(stage) = later {
+            let _ = writeln!(
+                svg,
+                r#"<text x="{cx}" y="{}" font-size="14" font-weight="bold" text-anchor="middle" fill="{ink}">{rule:?} ({stage})</text><text x="{cx}" y="{}" font-size="11" text-anchor="middle" fill="{ink}">no table entry</text>"#,
+                cy - 2.0,
+                cy + 14.0
+            );
+        } else {
+            let _ = writeln!(
+                svg,
+                r#"<text x="{cx}" y="{}" font-size="14" font-weight="bold" text-anchor="middle" fill="{ink}">{rule:?}</text>"#,
+                cy + 5.0
+            );
+        }
+    }
+    // The legend: the palette's rule colours.
+    let y = top + n * cell_h + 36.0;
+    let mut x = 16.0;
+    for rule in [
+        CollisionRule::Normal,
+        CollisionRule::NoResponse,
+        CollisionRule::NoContacts,
+        CollisionRule::NoPair,
+    ] {
+        let name = format!("{rule:?}");
+        let _ = writeln!(
+            svg,
+            r##"<rect x="{x}" y="{}" width="24" height="14" fill="{}"/><text x="{}" y="{y}" font-size="12" fill="#111111">{name}</text>"##,
+            y - 11.0,
+            palette.rule(Some(rule)).hex(),
+            x + 30.0
+        );
+        x += 50.0 + 7.5 * name.len() as f32;
+    }
+    let _ = writeln!(
+        svg,
+        r##"<text x="16" y="{}" font-size="12" fill="#444444">"(default)": the table has no entry for the two groups (group_rule gives Defer),</text>
+<text x="16" y="{}" font-size="12" fill="#444444">so the last stage decides: the default rule, Normal.</text>"##,
+        y + 26.0,
+        y + 44.0
+    );
+    svg.push_str("</svg>\n");
+    svg
 }
 
 #[test]

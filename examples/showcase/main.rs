@@ -10,8 +10,10 @@
 //! halves keep their `NoPair` with the floor.
 //!
 //! Prints one row per actor (rule, who decided it, pairs, contacts, events,
-//! the measured outcome), writes side views of the scene at a few instants
-//! to `target/showcase/scene.svg`, and exits non-zero if any outcome is not
+//! the measured outcome), draws one panel per actor (its path in its
+//! rule's colour, the other object of its rule, the outcome in words) to
+//! `target/showcase/scene.svg` and `docs/showcase_scene.svg`, and exits
+//! non-zero if any outcome is not
 //! what the rule promises. The scene is written once (`scene.rs`) and run in
 //! 2D too by `showcase2d`.
 //!

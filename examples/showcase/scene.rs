@@ -1,33 +1,23 @@
 //! The showcase's scene, written once for both dimensions: every rule at
-//! work, stepped for three seconds, with one row per actor and side views
-//! (see `main.rs` of `showcase` and `showcase2d`).
+//! work, stepped for three seconds, with one row per actor and one panel
+//! per actor in the picture (see `main.rs` of `showcase` and `showcase2d`).
 
 use approx::abs_diff_eq;
-use std::collections::HashMap;
 use std::sync::mpsc::{Receiver, channel};
 
+use crate::rapier::math::DIM;
 use crate::rapier::prelude::*;
-use crate::rules::{CollisionRule, CollisionRuleSet, Explanation, RuleError, RuleHooks};
-use crate::view::{self, Shape};
+use crate::rules::{CollisionRule, CollisionRuleSet, Explanation, RuleError, RuleHooks, Stage};
+use crate::view::{self, Figure, P, Panel, Picture};
 use crate::{at, axle, blade_at_y, cuboid, jelly, net};
 
 const STEPS: usize = 180;
+/// The instants marked on the trajectories.
 const SNAPSHOTS: [usize; 4] = [0, 40, 90, 180];
+/// The trajectories are sampled every `SAMPLE` steps.
+const SAMPLE: usize = 3;
 /// The step at which the rope is cut.
 const CUT: usize = 60;
-/// Where each actor stands, for the labels of the first view.
-const LABELS: [(&str, f32); 10] = [
-    ("jelly, gate", -34.0),
-    ("walker, net", -28.0),
-    ("cut rope", -22.5),
-    ("ragdoll", -16.6),
-    ("vehicle", -8.0),
-    ("ghost + wall", 1.0),
-    ("player, zone, debris", 10.0),
-    ("platforms", 19.0),
-    ("bullets", 26.5),
-    ("shield / wall", 31.5),
-];
 
 /// One actor of the scene: its colliders, and the pair the table reports.
 struct Actor {
@@ -35,6 +25,8 @@ struct Actor {
     colliders: Vec<ColliderHandle>,
     /// The collider pair whose rule this actor demonstrates.
     pair: (ColliderHandle, ColliderHandle),
+    /// What the pair's two colliders are, for the picture's captions.
+    roles: [&'static str; 2],
 }
 
 struct Scene {
@@ -77,6 +69,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "ragdoll",
         colliders: limbs.iter().map(|l| l.1).collect(),
         pair: (limbs[0].1, limbs[1].1),
+        roles: ["limb", "next limb"],
     });
 
     // A vehicle: wheels jointed under the chassis, inside its outline.
@@ -97,6 +90,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "vehicle",
         colliders: [hull].into_iter().chain(wheels.iter().copied()).collect(),
         pair: (hull, wheels[0]),
+        roles: ["chassis", "wheel"],
     });
 
     // A ghost walking through one wall: a specific rule, contacts and events.
@@ -116,6 +110,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "ghost",
         colliders: vec![spirit],
         pair: (spirit, wall),
+        roles: ["ghost", "wall"],
     });
 
     // The player, standing in a pickup zone, under falling debris.
@@ -128,6 +123,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "pickup",
         colliders: vec![zone],
         pair: (avatar, zone),
+        roles: ["player", "pickup zone"],
     });
     let (players, rubble) = (rules.create_group(), rules.create_group());
     rules.set_group(player, Some(players));
@@ -144,11 +140,13 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "debris",
         colliders: debris.clone(),
         pair: (debris[0], avatar),
+        roles: ["debris", "player"],
     });
     actors.push(Actor {
         name: "player",
         colliders: vec![avatar],
         pair: (avatar, floor),
+        roles: ["player", "floor"],
     });
 
     // Two kinematic platforms driven through each other.
@@ -170,6 +168,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "platforms",
         colliders: vec![a, b],
         pair: (a, b),
+        roles: ["left platform", "right platform"],
     });
 
     // CCD bullets: one at a NoResponse shield, one at a Normal wall.
@@ -195,11 +194,13 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "bullet/shield",
         colliders: vec![round, shield],
         pair: (round, shield),
+        roles: ["bullet", "shield"],
     });
     actors.push(Actor {
         name: "bullet/wall",
         colliders: vec![slug, wall2],
         pair: (slug, wall2),
+        roles: ["bullet", "wall"],
     });
 
     // Soft bodies (`docs/semantics.md`, "Soft bodies"), named by their root
@@ -217,6 +218,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "jelly/gate",
         colliders: skin.iter().copied().chain([gate]).collect(),
         pair: (skin[0], gate),
+        roles: ["jelly", "gate"],
     });
 
     // A walker passing through a net pinned at its ends, as debris lands on it.
@@ -241,6 +243,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
             .chain(netting.iter().copied())
             .collect(),
         pair: (walker, netting[0]),
+        roles: ["walker", "net"],
     });
     let dropped_body = body_at(&mut world, RigidBodyBuilder::dynamic(), -27.0, 2.5);
     let dropped = world.insert_collider(cuboid(0.15, 0.15, 0.15), Some(dropped_body));
@@ -248,6 +251,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "debris/net",
         colliders: vec![dropped],
         pair: (dropped, netting[0]),
+        roles: ["debris", "net"],
     });
 
     // A rope hung from its top end that ignores the floor, cut in two.
@@ -263,6 +267,7 @@ fn build() -> Result<(Scene, Handles), RuleError> {
         name: "rope/floor",
         colliders: strands.clone(),
         pair: (strands[0], floor),
+        roles: ["rope", "floor"],
     });
 
     let handles = Handles {
@@ -336,6 +341,177 @@ fn mean_x(world: &PhysicsWorld, soft: SoftBodyHandle) -> f32 {
     body.particle_positions().map(|p| p.x).sum::<f32>() / body.num_particles() as f32
 }
 
+/// What a collider is drawn as: itself, or the soft body whose surface it is.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Owner {
+    Rigid(ColliderHandle),
+    Soft(SoftBodyHandle),
+}
+
+fn owner(world: &PhysicsWorld, collider: ColliderHandle) -> Owner {
+    world
+        .soft_bodies
+        .iter()
+        .find(|(_, body)| body.mesh_of(collider).is_some())
+        .map_or(Owner::Rigid(collider), |(handle, _)| Owner::Soft(handle))
+}
+
+/// Where an owner is: a collider's centre, a soft body's mean particle.
+fn centre(world: &PhysicsWorld, owner: Owner) -> P {
+    match owner {
+        Owner::Rigid(c) => {
+            let t = world.colliders[c].translation();
+            (t.x, t.y)
+        }
+        Owner::Soft(s) => {
+            let body = &world.soft_bodies[s];
+            let n = body.num_particles() as f32;
+            let (x, y) = body
+                .particle_positions()
+                .fold((0.0, 0.0), |(x, y), p| (x + p.x, y + p.y));
+            (x / n, y / n)
+        }
+    }
+}
+
+/// An owner's outline in the x-y plane: a rigid collider's silhouette (its
+/// support points in 32 directions of the plane), or a soft body's
+/// structural edges.
+fn figure(world: &PhysicsWorld, owner: Owner) -> Figure {
+    match owner {
+        Owner::Rigid(c) => {
+            let collider = &world.colliders[c];
+            let mut outline: Vec<P> = match collider.shape().as_support_map() {
+                Some(shape) => (0..32)
+                    .map(|i| {
+                        let angle = i as f32 * std::f32::consts::TAU / 32.0;
+                        let p =
+                            shape.support_point(collider.position(), at(angle.cos(), angle.sin()));
+                        (p.x, p.y)
+                    })
+                    .collect(),
+                None => {
+                    let aabb = collider.compute_aabb();
+                    let (lo, hi) = (aabb.mins, aabb.maxs);
+                    vec![(lo.x, lo.y), (hi.x, lo.y), (hi.x, hi.y), (lo.x, hi.y)]
+                }
+            };
+            outline.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-4 && (a.1 - b.1).abs() < 1e-4);
+            Figure {
+                paths: vec![outline],
+                closed: true,
+                particles: Vec::new(),
+            }
+        }
+        Owner::Soft(s) => {
+            let body = &world.soft_bodies[s];
+            let at = |i: u32| {
+                let p = body.particle_position(i as usize);
+                (p.x, p.y)
+            };
+            Figure {
+                paths: body
+                    .edges()
+                    .iter()
+                    .filter(|e| e.kind == SoftBodyEdgeKind::Structural)
+                    .map(|e| vec![at(e.vertices[0]), at(e.vertices[1])])
+                    .collect(),
+                closed: false,
+                particles: body.particle_positions().map(|p| (p.x, p.y)).collect(),
+            }
+        }
+    }
+}
+
+/// Who plays what in an actor's panel: the actor (the owner of the pair's
+/// first collider, and every piece of it if it is a soft body), the other
+/// object of the pair, and the actor's other colliders (drawn, not traced).
+fn cast(world: &PhysicsWorld, actor: &Actor) -> (Vec<Owner>, Owner, Vec<Owner>) {
+    let first = owner(world, actor.pair.0);
+    let other = owner(world, actor.pair.1);
+    let (mut subject, mut companions) = (vec![first], Vec::new());
+    for &c in &actor.colliders {
+        let o = owner(world, c);
+        if o == other || subject.contains(&o) || companions.contains(&o) {
+            continue;
+        }
+        if matches!((first, o), (Owner::Soft(_), Owner::Soft(_))) {
+            subject.push(o);
+        } else {
+            companions.push(o);
+        }
+    }
+    (subject, other, companions)
+}
+
+/// What the picture needs of one actor: its trajectory, sampled, and its
+/// shapes and the other object's at the first and the last step.
+#[derive(Default)]
+struct Trail {
+    tracks: Vec<(Owner, Vec<(usize, P)>)>,
+    start: Vec<Figure>,
+    end: Vec<Figure>,
+    other: Vec<Figure>,
+    other_moved: bool,
+    other_at: Vec<P>,
+}
+
+impl Trail {
+    fn record(&mut self, world: &PhysicsWorld, actor: &Actor, step: usize) {
+        let (subject, other, companions) = cast(world, actor);
+        for &o in &subject {
+            let i = match self.tracks.iter().position(|t| t.0 == o) {
+                Some(i) => i,
+                None => {
+                    // A piece cut off mid-run forks from the track of the
+                    // body it was cut from.
+                    let origin = match o {
+                        Owner::Soft(s) => world.soft_bodies[s].origin(),
+                        Owner::Rigid(_) => None,
+                    };
+                    let fork = origin
+                        .and_then(|h| self.tracks.iter().find(|t| t.0 == Owner::Soft(h)))
+                        .and_then(|t| t.1.iter().rev().find(|s| s.0 < step).copied());
+                    self.tracks.push((o, fork.into_iter().collect()));
+                    self.tracks.len() - 1
+                }
+            };
+            self.tracks[i].1.push((step, centre(world, o)));
+        }
+        if step == 0 || step == STEPS {
+            let shapes = subject
+                .iter()
+                .chain(&companions)
+                .map(|&o| figure(world, o))
+                .collect();
+            let other_figure = figure(world, other);
+            let points: Vec<P> = other_figure.paths.iter().flatten().copied().collect();
+            if step == 0 {
+                self.start = shapes;
+                self.other_at = points;
+            } else {
+                self.end = shapes;
+                self.other_moved = points.len() != self.other_at.len()
+                    || points
+                        .iter()
+                        .zip(&self.other_at)
+                        .any(|(a, b)| (a.0 - b.0).hypot(a.1 - b.1) > 0.02);
+            }
+            self.other.push(other_figure);
+        }
+    }
+}
+
+/// The stage that decided a rule, in words.
+fn stage_words(stage: Stage) -> &'static str {
+    match stage {
+        Stage::Specific => "specific rule",
+        Stage::Personal => "personal rule",
+        Stage::Group => "group table",
+        Stage::Default => "default rule",
+    }
+}
+
 /// What was seen of each actor's pair over the run.
 #[derive(Default)]
 struct Seen {
@@ -345,8 +521,10 @@ struct Seen {
     stopped: usize,
 }
 
-/// Builds and steps the scene, prints the table, writes the side views to
-/// `target/showcase/{picture}`; an error if an actor broke its promise.
+/// Builds and steps the scene, prints the table, writes one panel per actor
+/// (its trajectory, the other object of its rule) to
+/// `target/showcase/{picture}` and `docs/showcase_{picture}`; an error if an
+/// actor broke its promise.
 pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
     let (scene, h) = build()?;
     let Scene {
@@ -378,10 +556,13 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
 
     let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/showcase");
     std::fs::create_dir_all(&out)?;
-    let mut frames = Vec::new();
+    let mut trails: Vec<Trail> = actors.iter().map(|_| Trail::default()).collect();
+    let floor_figure = figure(&world, Owner::Rigid(floor));
     for step in 0..=STEPS {
-        if SNAPSHOTS.contains(&step) {
-            frames.push((step, snapshot(&world, &hooks, &actors)));
+        if step % SAMPLE == 0 || step == STEPS || SNAPSHOTS.contains(&step) {
+            for (actor, trail) in actors.iter().zip(&mut trails) {
+                trail.record(&world, actor, step);
+            }
         }
         if step == STEPS {
             break;
@@ -573,49 +754,77 @@ pub fn run(picture: &str) -> Result<(), Box<dyn std::error::Error>> {
          in Rapier 0.36.1: docs/semantics.md, \"Soft bodies\")"
     );
 
-    let svg = view::render(&frames, &LABELS);
+    // One panel per actor: its trajectory, the other object of its pair,
+    // and the rule and the measured outcome in words.
+    let panels = actors
+        .iter()
+        .zip(&explanations)
+        .zip(&seen)
+        .zip(&outcomes)
+        .zip(trails)
+        .map(|((((actor, why), s), (outcome, ok)), trail)| {
+            let events = match (s.started, s.stopped) {
+                (0, 0) => "no events".to_owned(),
+                (a, b) => format!("events: {a} started, {b} stopped"),
+            };
+            let [me, other] = actor.roles;
+            let mut others = trail.other.into_iter();
+            let other_start = others.next().unwrap_or_default();
+            let other_end = others.next().filter(|_| trail.other_moved);
+            Panel {
+                title: actor.name.to_owned(),
+                caption: vec![
+                    format!(
+                        "{me}: {:?} with the {other} ({})",
+                        why.rule,
+                        stage_words(why.stage)
+                    ),
+                    format!("→ {outcome}"),
+                    format!(
+                        "{}, {}, {events}",
+                        if s.live.is_some() {
+                            "pair live"
+                        } else {
+                            "never a live pair"
+                        },
+                        if s.touched {
+                            "touched"
+                        } else {
+                            "never touched"
+                        },
+                    ),
+                ],
+                ok: *ok,
+                rule: why.rule,
+                other: other.to_owned(),
+                tracks: trail.tracks.into_iter().map(|t| t.1).collect(),
+                start: trail.start,
+                end: trail.end,
+                other_start,
+                other_end,
+            }
+        })
+        .collect();
+    let svg = view::render(&Picture {
+        title: format!(
+            "Every rule at work ({}): each actor's path over {t:.0} s, with the other object of its rule",
+            if DIM == 2 { "2D" } else { "3D, seen along z" }
+        ),
+        panels,
+        scenery: vec![floor_figure],
+        marks: &SNAPSHOTS,
+        steps_per_second: 60.0,
+    });
     std::fs::write(out.join(picture), &svg)?;
     // The README's picture, the same each run: regenerated here.
     let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
     std::fs::write(docs.join(format!("showcase_{picture}")), &svg)?;
     println!(
-        "side views at steps {SNAPSHOTS:?}: {} (and docs/showcase_{picture})",
+        "trajectories, marked at steps {SNAPSHOTS:?}: {} (and docs/showcase_{picture})",
         out.join(picture).display()
     );
     if failures > 0 {
         return Err(format!("{failures} actor(s) did not do what their rule promises").into());
     }
     Ok(())
-}
-
-/// Every collider's extent: an actor's colliders coloured by the rule of the
-/// pair the actor demonstrates (grey while that pair is not live), the
-/// scenery (floor, walls) left white.
-fn snapshot(world: &PhysicsWorld, hooks: &RuleHooks, actors: &[Actor]) -> Vec<Shape> {
-    let mut colors: HashMap<ColliderHandle, &'static str> = HashMap::new();
-    for actor in actors {
-        let (a, b) = actor.pair;
-        let rule = hooks.rules().resolve(&world.bodies, &world.colliders, a, b);
-        // NoPair pairs are never live: their colour shows all the time.
-        let shown = hooks
-            .pair_rule(world, a, b)
-            .or((rule == CollisionRule::NoPair).then_some(rule));
-        for &c in &actor.colliders {
-            colors.insert(c, view::color(shown));
-        }
-    }
-    world
-        .colliders
-        .iter()
-        .map(|(handle, collider)| {
-            // With its contact skin: a soft body's rope is a polyline of
-            // no width, thickened by its particles' radius.
-            let aabb = collider.compute_aabb().loosened(collider.contact_skin());
-            Shape {
-                min: (aabb.mins.x, aabb.mins.y),
-                max: (aabb.maxs.x, aabb.maxs.y),
-                color: colors.get(&handle).copied().unwrap_or("#ffffff"),
-            }
-        })
-        .collect()
 }

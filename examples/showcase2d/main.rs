@@ -9,9 +9,11 @@
 //! passes through while debris lands on it, and a rope cut in two whose
 //! halves keep their `NoPair` with the floor.
 //!
-//! Prints one row per actor with the measured outcome, writes the side
-//! views to `target/showcase/scene2d.svg`, and exits non-zero if any
-//! outcome is not what the rule promises.
+//! Prints one row per actor with the measured outcome, draws one panel per
+//! actor (its trajectory, the other object of its rule, the rule and the
+//! outcome in words) to `target/showcase/scene2d.svg` and
+//! `docs/showcase_scene2d.svg`, and exits non-zero if any outcome is not
+//! what the rule promises.
 //!
 //! Run it with `cargo run --release --example showcase2d --features dim2`.
 

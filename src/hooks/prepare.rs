@@ -135,6 +135,7 @@ impl RuleHooks {
         self.stats.shares_project_bits = self.planned.plan.room.is_some();
         self.stats.watched_colliders = self.planned.roster.collider_count();
         self.stats.watched_bodies = self.planned.roster.body_count();
+        self.copy_decisions();
     }
 
     /// The step boundary: checks the last step was finished, counts this one.
@@ -450,7 +451,7 @@ impl RuleHooks {
             if self.planned.plan.forget(handle) {
                 self.queued.replan.get_or_insert(PlanCause::NewClass);
             }
-            self.planned.written.remove(handle);
+            self.keep_written(handle, None);
             gone.push(Node::Collider(handle));
             // A body that keeps other colliders is in the look's `left`.
             if let Some(body) = body.filter(|&b| !bodies.contains(b)) {

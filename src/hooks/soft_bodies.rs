@@ -412,7 +412,7 @@ impl RuleHooks {
                 None => originals[..likeliest].iter().find_map(|&o| self.planned.written.get(o).copied()),
             };
             if let Some(written) = written {
-                self.planned.written.insert_evicting(copy, written);
+                self.keep_written(copy, Some(written));
             }
         }
     }

@@ -21,6 +21,7 @@ impl RuleHooks {
         graph: Option<&NarrowPhase>,
         cause: PlanCause,
     ) {
+        self.adopt_saved_plan(colliders);
         let pinned = self.pinned();
         let ruled = self.decide.rules.ruled_nodes();
         // The watched colliders, and those waiting for a plan of their own
@@ -88,6 +89,10 @@ impl RuleHooks {
         self.queued.replan = None;
         self.queued.candidates.clear();
         self.count_hooked();
+        // The set's copy of the decisions is the plan's (a set built by
+        // code and put in place of another starts without them).
+        self.planned.plan.decisions.take_journal();
+        self.decide.rules.decisions = self.planned.plan.decisions.all().collect();
     }
 
     /// Plans the candidate colliders alone when the rest of the plan stands
@@ -196,11 +201,10 @@ impl RuleHooks {
         }
         // The collider is the project's again once the crate adds nothing.
         if target == own {
-            self.planned.written.remove(handle);
+            self.keep_written(handle, None);
             self.planned.roster.wrote(handle, None);
         } else {
-            let written = Written { own, wrote: target };
-            self.planned.written.insert_evicting(handle, written);
+            self.keep_written(handle, Some(Written { own, wrote: target }));
             self.planned.roster.wrote(handle, Some(target));
         }
         if target == now {
@@ -227,6 +231,58 @@ impl RuleHooks {
             collider.set_collision_groups(InteractionGroups::none());
         }
         target.write(collider);
+    }
+}
+
+/// What the crate wrote.
+impl RuleHooks {
+    /// Keeps what the crate wrote on `handle` (`None`: nothing, its
+    /// settings are the project's), and the rule set's copy of it, which a
+    /// saved rule set carries (`docs/semantics.md`, "Saving and loading").
+    pub(super) fn keep_written(&mut self, handle: ColliderHandle, written: Option<Written>) {
+        match written {
+            Some(written) => {
+                self.planned.written.insert_evicting(handle, written);
+                self.decide.rules.writes.insert_evicting(handle, written);
+            }
+            None => {
+                self.planned.written.remove(handle);
+                self.decide.rules.writes.remove(handle);
+            }
+        }
+    }
+
+    /// Before a whole plan (the first step, a rule set put in place of
+    /// another), what a rule set saved with its world carries of the hooks
+    /// that stepped it (`docs/semantics.md`, "Saving and loading"): what
+    /// the crate had written on each collider, and the project's settings
+    /// under it, read as the hooks that wrote them read them (a field that
+    /// differs from what was written is the project's, set since or saved
+    /// with the project's settings); and hooks that have decided no specific
+    /// entry go on with the saved decisions. Then the set's copy of the writes is
+    /// the hooks' records again (a set built by code carries none).
+    fn adopt_saved_plan(&mut self, colliders: &ColliderSet) {
+        for (handle, saved) in self.decide.rules.writes.iter() {
+            if colliders.contains(handle) && self.planned.written.get(handle).is_none() {
+                self.planned.written.insert_evicting(handle, *saved);
+            }
+        }
+        self.decide.rules.writes = self.planned.written.clone();
+        if self.planned.plan.decisions.is_empty() {
+            let saved = self.decide.rules.decisions.iter().map(|(&e, &d)| (e, d));
+            self.planned.plan.decisions.seed(saved);
+        }
+    }
+
+    /// After the phases before a step: the decisions made and undone are
+    /// copied into the rule set, which a saved set carries.
+    pub(super) fn copy_decisions(&mut self) {
+        for (entry, decision) in self.planned.plan.decisions.take_journal() {
+            match decision {
+                Some(decision) => self.decide.rules.decisions.insert(entry, decision),
+                None => self.decide.rules.decisions.remove(&entry),
+            };
+        }
     }
 }
 

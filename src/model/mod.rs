@@ -22,6 +22,7 @@
 
 pub(crate) mod body_kinds;
 pub(crate) mod changes;
+pub(crate) mod decision;
 pub(crate) mod ending;
 pub(crate) mod error;
 pub(crate) mod group;
@@ -42,6 +43,7 @@ pub(crate) mod rule_set;
 #[cfg(feature = "serde")]
 pub(crate) mod snapshot;
 pub(crate) mod tombstones;
+pub(crate) mod written;
 
 pub use ending::Until;
 pub use error::RuleError;
@@ -60,3 +62,5 @@ pub(crate) use pieces::Heir;
 pub(crate) use node::HandleMap;
 pub(crate) use node_rules::CollidersUnder;
 pub(crate) use records::Record;
+pub(crate) use decision::Decision;
+pub(crate) use written::{Settings, Written};

@@ -9,6 +9,8 @@ use super::changes::Changes;
 use super::ending::Endings;
 use super::group_table::GroupTable;
 use super::hierarchy::Hierarchy;
+use super::decision::Decision;
+use super::written::Written;
 use super::node::HandleMap;
 use super::records::{RecordId, Records};
 use super::tombstones::Tombstones;
@@ -64,6 +66,16 @@ pub struct CollisionRuleSet {
     pub(super) endings: Endings,
     /// A node was given a one-way setting once (see `set_one_way`).
     pub(super) one_ways_used: bool,
+    /// A copy of what the hooks wrote on each collider and the project's
+    /// own settings under it, kept by the hooks that hold this set, so that
+    /// a saved set carries it: hooks given the set with a world saved with
+    /// it tell their own writes from the project's settings
+    /// (`docs/semantics.md`, "Saving and loading"). Not an edit: it is no
+    /// rule, and nothing logs it.
+    pub(crate) writes: HandleMap<ColliderHandle, Written>,
+    /// A copy of how the hooks decided each specific entry, kept as
+    /// `writes` is, for the same reason.
+    pub(crate) decisions: HashMap<(Node, Node), Decision>,
 }
 
 impl Default for CollisionRuleSet {
@@ -80,6 +92,8 @@ impl Default for CollisionRuleSet {
             removed: Tombstones::default(),
             endings: Endings::default(),
             one_ways_used: false,
+            writes: HandleMap::default(),
+            decisions: HashMap::new(),
         }
     }
 }

@@ -3,10 +3,12 @@
 //! Handles are saved as Rapier saves them, so a rule set is saved and loaded
 //! together with the Rapier sets it belongs to.
 
-use super::super::rapier::prelude::RigidBodyHandle;
+use super::super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
 use serde::{Deserialize, Serialize};
 
 use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, OneWay, RuleError, Until};
+use super::decision::Decision;
+use super::written::Written;
 
 /// Why a saved rule set was refused: what no rule set of this crate holds,
 /// so what only a damaged or hand-edited save can say. A refused load builds
@@ -107,6 +109,16 @@ pub struct SavedRuleSet {
     /// from saves made before rules had ends).
     #[serde(default)]
     endings: Vec<(Node, Node, Until)>,
+    /// What the hooks that held the set had written on each collider, and
+    /// the project's own settings under it: hooks given the set with the
+    /// world saved beside it tell the crate's writes from the project's
+    /// settings (`docs/semantics.md`, "Saving and loading"). Absent from
+    /// saves made before it was saved.
+    #[serde(default)]
+    writes: Vec<(ColliderHandle, Written)>,
+    /// How those hooks decided each specific entry (absent as `writes`).
+    #[serde(default)]
+    decisions: Vec<(Node, Node, Decision)>,
 }
 
 impl From<CollisionRuleSet> for SavedRuleSet {
@@ -140,6 +152,9 @@ impl From<CollisionRuleSet> for SavedRuleSet {
         parents.sort_by_key(|(c, _)| c.into_raw_parts());
         let mut endings: Vec<_> = rules.endings.iter().map(|(&(n, o), &u)| (n, o, u)).collect();
         endings.sort_by_key(|&(n, o, _)| (n, o));
+        let writes = rules.writes.iter().map(|(h, &w)| (h, w)).collect();
+        let mut decisions: Vec<_> = rules.decisions.iter().map(|(&(n, o), &d)| (n, o, d)).collect();
+        decisions.sort_by_key(|&(n, o, _)| (n, o));
         SavedRuleSet {
             default_rule: rules.default_rule(),
             group_count: rules.group_count(),
@@ -147,6 +162,8 @@ impl From<CollisionRuleSet> for SavedRuleSet {
             records: records.into_iter().map(|(_, r)| r).collect(),
             parents,
             endings,
+            writes,
+            decisions,
         }
     }
 }
@@ -240,6 +257,10 @@ impl TryFrom<SavedRuleSet> for CollisionRuleSet {
                 rules.endings.insert((node, other), until);
             }
         }
+        for (collider, written) in saved.writes {
+            rules.writes.insert_evicting(collider, written);
+        }
+        rules.decisions = saved.decisions.into_iter().map(|(n, o, d)| ((n, o), d)).collect();
         // Put in place of a rule set the hooks hold (`*hooks.rules_mut() =
         // loaded`), every pair and plan is to be looked at again.
         rules.mark_all_changed();

@@ -19,26 +19,8 @@ use super::carriers::side_cost;
 use super::class::Class;
 use super::collider_plan::ColliderPlan;
 use super::plan::{Request, ordered};
-use super::super::model::CollidersUnder;
+use super::super::model::{CollidersUnder, Decision};
 use super::super::{CollisionRule, Node};
-
-/// How one specific entry is decided.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Decision {
-    /// Rapier's groups decide it: the colliders under `carrying`, all on
-    /// dynamic bodies, take `bit` as their membership of `kind` (0:
-    /// collision groups, for `NoPair`; 1: solver groups, for `NoResponse`),
-    /// and the colliders under `other` leave it out of their filter. Every
-    /// entry about `other` of one kind shares one bit.
-    Bits {
-        carrying: Node,
-        other: Node,
-        kind: usize,
-        bit: u32,
-    },
-    /// The colliders under `side` are hooked.
-    Hooked { side: Node },
-}
 
 /// A collider's plan before the entries: its class's, a personal one, or
 /// hooked by its own chain.
@@ -79,6 +61,10 @@ pub(crate) struct Decisions {
     /// entry (see [`bits_for`](Self::bits_for)).
     carriers_on: NodesOnBits,
     others_on: NodesOnBits,
+    /// The decisions made and undone since the hooks last took them, in
+    /// order (`None`: undone): the hooks copy them into the rule set, which
+    /// a saved set carries (`docs/semantics.md`, "Saving and loading").
+    journal: Vec<((Node, Node), Option<Decision>)>,
 }
 
 /// What deciding reads besides the rules and the world.
@@ -139,6 +125,34 @@ struct Undone {
 type NodesOnBits = [[u32; 32]; 2];
 
 impl Decisions {
+    /// Decisions saved with a rule set, for hooks that have made none: a
+    /// world saved mid-run goes on with the decisions it was stepped with,
+    /// which rest on the pairs Rapier had when each was made
+    /// (`planner/carriers.rs`), not on those of the loaded world.
+    pub(crate) fn seed(&mut self, saved: impl IntoIterator<Item = ((Node, Node), Decision)>) {
+        let mut saved: Vec<_> = saved.into_iter().collect();
+        saved.sort_unstable_by_key(|&(entry, _)| entry);
+        for (entry, decision) in saved {
+            self.list(entry);
+            self.make(entry, decision);
+        }
+    }
+
+    /// Whether no entry has a decision.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.made.is_empty()
+    }
+
+    /// Every decision, in no order.
+    pub(crate) fn all(&self) -> impl Iterator<Item = ((Node, Node), Decision)> + '_ {
+        self.made.iter().map(|(&entry, &decision)| (entry, decision))
+    }
+
+    /// The decisions made and undone since the last call, in order.
+    pub(crate) fn take_journal(&mut self) -> Vec<((Node, Node), Option<Decision>)> {
+        std::mem::take(&mut self.journal)
+    }
+
     /// The entries listed under `node`, in no order.
     pub(super) fn listed(&self, node: Node) -> impl Iterator<Item = (Node, Node)> + '_ {
         self.listed.get(&node).into_iter().flatten().copied()
@@ -267,10 +281,12 @@ impl Decisions {
             Decision::Hooked { side } => *self.hooked_sides.entry(side).or_default() += 1,
         }
         self.made.insert(entry, decision);
+        self.journal.push((entry, Some(decision)));
     }
 
     fn unmake(&mut self, entry: (Node, Node)) -> Option<Decision> {
         let decision = self.made.remove(&entry)?;
+        self.journal.push((entry, None));
         match decision {
             Decision::Bits {
                 carrying,

@@ -6,14 +6,7 @@
 
 use super::super::rapier::prelude::*;
 
-/// The four per-collider settings Rapier reads before the hook.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Settings {
-    pub(crate) collision: InteractionGroups,
-    pub(crate) solver: InteractionGroups,
-    pub(crate) types: ActiveCollisionTypes,
-    pub(crate) hooks: ActiveHooks,
-}
+pub(crate) use super::super::model::{Settings, Written};
 
 impl Settings {
     /// The settings `collider` has now.
@@ -69,18 +62,6 @@ impl Settings {
     pub(crate) fn widened(self) -> bool {
         !(self.types - ActiveCollisionTypes::default()).is_empty()
     }
-}
-
-
-
-
-/// A collider the crate has written settings to: the project's own
-/// settings, and what the crate wrote (a difference later means the project
-/// changed a setting through Rapier).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Written {
-    pub(crate) own: Settings,
-    pub(crate) wrote: Settings,
 }
 
 impl Written {

@@ -56,7 +56,8 @@ pub enum Edit {
     /// Several Rapier steps between one `prepare` and one `after_step`
     /// (what bevy_rapier does with substeps).
     Bracket(usize),
-    /// The rule set saved and loaded back into the hooks (with `serde`).
+    /// The world and its rule set saved together and loaded back into a
+    /// fresh world and fresh hooks (with `serde`), without any extra call.
     Reload,
     /// A small soft body at a point: its root body and surface join the
     /// bodies and colliders the edits name.
@@ -313,7 +314,9 @@ impl Run {
         for piece in pieces {
             let bodies = &self.world.soft_bodies;
             let meshes = |h: SoftBodyHandle| -> Vec<ColliderHandle> {
-                bodies.get(h).map_or_else(Vec::new, |b| b.meshes().map(|m| m.collider()).collect())
+                bodies
+                    .get(h)
+                    .map_or_else(Vec::new, |b| b.meshes().map(|m| m.collider()).collect())
             };
             let source = bodies[piece].origin().filter(|&o| bodies.contains(o));
             let sides = [source.map_or_else(Vec::new, meshes), meshes(piece)];
@@ -352,8 +355,13 @@ impl Run {
     /// before (a piece takes what its source holds when the hooks first
     /// see it: an edit between an earlier split and that reaches it too).
     fn before_split(&mut self, root: RigidBodyHandle) -> Held {
-        self.hooks.follow_soft_bodies(&self.world.soft_bodies, &self.world.bodies);
-        let proxies = self.world.soft_bodies.iter().flat_map(|(_, b)| b.live_clusters().map(|(_, c)| c.proxy()));
+        self.hooks
+            .follow_soft_bodies(&self.world.soft_bodies, &self.world.bodies);
+        let proxies = self
+            .world
+            .soft_bodies
+            .iter()
+            .flat_map(|(_, b)| b.live_clusters().map(|(_, c)| c.proxy()));
         Held {
             source: self.soft_rules(root),
             own: proxies.map(|p| (p, self.soft_rules(p))).collect(),
@@ -369,15 +377,25 @@ impl Run {
         let Some(split) = split else {
             return;
         };
-        self.hooks.follow_soft_bodies(&self.world.soft_bodies, &self.world.bodies);
+        self.hooks
+            .follow_soft_bodies(&self.world.soft_bodies, &self.world.bodies);
         for piece in split.bodies() {
             let Some(body) = self.world.soft_bodies.get(piece) else {
                 continue;
             };
             let root = body.root_body();
-            let own = held.own.get(&root).copied().filter(|&r| r != (CollisionRule::Defer, None));
+            let own = held
+                .own
+                .get(&root)
+                .copied()
+                .filter(|&r| r != (CollisionRule::Defer, None));
             let expected = own.unwrap_or(held.source);
-            assert_eq!(self.soft_rules(root), expected, "piece {piece:?} (root {root:?}) of {:?}", split.soft_body);
+            assert_eq!(
+                self.soft_rules(root),
+                expected,
+                "piece {piece:?} (root {root:?}) of {:?}",
+                split.soft_body
+            );
         }
     }
 
@@ -385,7 +403,9 @@ impl Run {
     /// same edits do the same to both: a cut of a soft body that moved
     /// differently in each may split it differently.
     pub fn names_alike(&self, other: &Run) -> bool {
-        self.bodies == other.bodies && self.colliders == other.colliders && self.softs == other.softs
+        self.bodies == other.bodies
+            && self.colliders == other.colliders
+            && self.softs == other.softs
     }
 
     /// The soft body an edit names by `i` (among those added), if it is
@@ -441,7 +461,9 @@ impl Run {
             Edit::SpecificUntil(x, y, r, u) => {
                 let (node, other) = (self.node(x), self.node(y));
                 let until = ends()[u % ends().len()];
-                self.hooks.rules_mut().set_specific_until(node, other, r, until);
+                self.hooks
+                    .rules_mut()
+                    .set_specific_until(node, other, r, until);
             }
             Edit::GroupRule(a, b, r) => self
                 .hooks
@@ -463,7 +485,11 @@ impl Run {
             Edit::Kind(b, k) => {
                 let handle = self.body(b);
                 // A soft body's proxy gets its type from Rapier alone.
-                let soft = self.world.bodies.get(handle).is_some_and(|b| b.is_soft_frame());
+                let soft = self
+                    .world
+                    .bodies
+                    .get(handle)
+                    .is_some_and(|b| b.is_soft_frame());
                 if let Some(body) = self.world.bodies.get_mut(handle).filter(|_| !soft) {
                     body.set_body_type(KINDS[k], true);
                 }
@@ -527,25 +553,33 @@ impl Run {
                 let Some((soft, body)) = self.soft(i) else {
                     return;
                 };
-                let Some((root_cluster, _)) = body.live_clusters().find(|(_, c)| c.proxy() == body.root_body()) else {
+                let Some((root_cluster, _)) = body
+                    .live_clusters()
+                    .find(|(_, c)| c.proxy() == body.root_body())
+                else {
                     return;
                 };
-                let middle = body.particle_positions().map(|p| p.y).sum::<f32>() / body.particle_positions().count().max(1) as f32;
+                let middle = body.particle_positions().map(|p| p.y).sum::<f32>()
+                    / body.particle_positions().count().max(1) as f32;
                 let upper: Vec<u32> = (0..body.particle_positions().count() as u32)
                     .filter(|&v| body.particle_position(v as usize).y > middle)
                     .collect();
                 if self.world.add_soft_body_cluster(soft, &upper).is_some() {
-                    let meshes: Vec<ColliderHandle> = self.world.soft_bodies[soft].meshes().map(|m| m.collider()).collect();
+                    let meshes: Vec<ColliderHandle> = self.world.soft_bodies[soft]
+                        .meshes()
+                        .map(|m| m.collider())
+                        .collect();
                     self.world.remove_soft_body_cluster(soft, root_cluster);
                     // The root's meshes go with its cluster.
                     if let Some(body) = self.world.soft_bodies.get(soft) {
-                        let left: Vec<ColliderHandle> = body.meshes().map(|m| m.collider()).collect();
-                        self.removed.extend(meshes.into_iter().filter(|c| !left.contains(c)));
+                        let left: Vec<ColliderHandle> =
+                            body.meshes().map(|m| m.collider()).collect();
+                        self.removed
+                            .extend(meshes.into_iter().filter(|c| !left.contains(c)));
                         let root = body.root_body();
                         if !self.bodies.contains(&root) {
                             self.bodies.push(root);
                         }
-
                     } else {
                         self.removed.extend(meshes);
                     }
@@ -568,7 +602,12 @@ impl Run {
                     })
                     .collect();
                 let softs = self.world.soft_bodies.len();
-                self.pulled.push(Pulled { soft, ends, softs, steps: 0 });
+                self.pulled.push(Pulled {
+                    soft,
+                    ends,
+                    softs,
+                    steps: 0,
+                });
                 self.adopt_soft(soft);
             }
             Edit::AddCollider(b) => {
@@ -584,7 +623,10 @@ impl Run {
                 let world = &mut self.world;
                 // A soft body's surface stays bound to its cluster; rigid
                 // colliders move between rigid bodies and proxies.
-                let bound = world.colliders.get(handle).is_some_and(|c| c.deformable_mesh_ref().is_some());
+                let bound = world
+                    .colliders
+                    .get(handle)
+                    .is_some_and(|c| c.deformable_mesh_ref().is_some());
                 if world.colliders.contains(handle) && world.bodies.contains(body) && !bound {
                     world
                         .colliders
@@ -676,11 +718,25 @@ impl Run {
                 self.replay_events();
             }
             Edit::Reload => {
+                // The world and its rule set saved together, as a game saves
+                // (no extra call), and loaded into a fresh world and fresh
+                // hooks, which go on from there (`docs/semantics.md`,
+                // "Saving and loading").
                 #[cfg(feature = "serde")]
                 {
-                    let saved =
-                        serde_json::to_string(self.hooks.rules()).expect("a rule set saves");
-                    *self.hooks.rules_mut() = serde_json::from_str(&saved).expect("a save loads");
+                    let saved = serde_json::to_string(&(&self.world, self.hooks.rules()))
+                        .expect("a world and its rule set save");
+                    let (world, rules): (PhysicsWorld, super::rules::CollisionRuleSet) =
+                        serde_json::from_str(&saved).expect("a save loads");
+                    let mut hooks = RuleHooks::new(rules);
+                    hooks.set_planner(self.hooks.planner());
+                    if self.replayed.is_some() {
+                        // Fresh hooks tell every live pair as started.
+                        hooks.record_rule_events(true);
+                        self.replayed = Some(Default::default());
+                    }
+                    self.world = world;
+                    self.hooks = hooks;
                 }
             }
             Edit::Corrupt(_leaf, _number) => {
@@ -752,34 +808,60 @@ impl Run {
         let mut last = None;
         for event in events {
             let (key, told) = match event {
-                RuleEvent::PairStarted { collider1, collider2, rule } => {
+                RuleEvent::PairStarted {
+                    collider1,
+                    collider2,
+                    rule,
+                } => {
                     let key = (collider1.into_raw_parts(), collider2.into_raw_parts());
                     assert!(!replayed.contains_key(&key), "{event:?}: the pair was live");
                     assert_ne!(rule, CollisionRule::NoPair, "{event:?}");
                     (key, Some(rule))
                 }
-                RuleEvent::RuleChanged { collider1, collider2, from, to, .. } => {
+                RuleEvent::RuleChanged {
+                    collider1,
+                    collider2,
+                    from,
+                    to,
+                    ..
+                } => {
                     let key = (collider1.into_raw_parts(), collider2.into_raw_parts());
-                    assert_eq!(replayed.get(&key), Some(&from), "{event:?}: the rule it had");
+                    assert_eq!(
+                        replayed.get(&key),
+                        Some(&from),
+                        "{event:?}: the rule it had"
+                    );
                     assert_ne!(from, to, "{event:?}");
                     (key, (to != CollisionRule::NoPair).then_some(to))
                 }
-                RuleEvent::PairEnded { collider1, collider2, rule } => {
+                RuleEvent::PairEnded {
+                    collider1,
+                    collider2,
+                    rule,
+                } => {
                     let key = (collider1.into_raw_parts(), collider2.into_raw_parts());
-                    assert_eq!(replayed.get(&key), Some(&rule), "{event:?}: the rule it had");
+                    assert_eq!(
+                        replayed.get(&key),
+                        Some(&rule),
+                        "{event:?}: the rule it had"
+                    );
                     (key, None)
                 }
                 _ => unreachable!("{event:?}: a new kind of event"),
             };
             assert!(key.0 < key.1, "{event:?}: colliders in handle order");
-            assert!(last < Some(key), "{event:?}: events in the pairs' order, one per pair");
+            assert!(
+                last < Some(key),
+                "{event:?}: events in the pairs' order, one per pair"
+            );
             last = Some(key);
             match told {
                 Some(rule) => replayed.insert(key, rule),
                 None => replayed.remove(&key),
             };
         }
-        let told: Vec<(Raw, Raw, CollisionRule)> = replayed.iter().map(|(&(a, b), &r)| (a, b, r)).collect();
+        let told: Vec<(Raw, Raw, CollisionRule)> =
+            replayed.iter().map(|(&(a, b), &r)| (a, b, r)).collect();
         assert_eq!(told, self.live(), "the rule events tell the live pairs");
         self.replayed = Some(replayed);
     }
@@ -840,7 +922,11 @@ impl Run {
             })
             .collect();
         softs.sort_by_key(|s| s.0);
-        poses.into_iter().map(|p| p.1).chain(softs.into_iter().map(|s| s.1)).collect()
+        poses
+            .into_iter()
+            .map(|p| p.1)
+            .chain(softs.into_iter().map(|s| s.1))
+            .collect()
     }
 
     /// The pairs with contacts, sorted.
@@ -1066,7 +1152,11 @@ impl Run {
             "the rule set is not clean"
         );
         for &gone in &self.removed {
-            assert!(self.hooks.hooked_pairs().all(|(a, b, _)| a != gone && b != gone));
+            assert!(
+                self.hooks
+                    .hooked_pairs()
+                    .all(|(a, b, _)| a != gone && b != gone)
+            );
         }
     }
 }

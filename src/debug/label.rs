@@ -40,10 +40,12 @@ fn node_name(node: Node) -> String {
 }
 
 /// `NoResponse: specific body 2 / collider 5, ends`: the pair's rule, then
-/// the override, or the calculator (a rule that is not the default
-/// calculation's), or the stage with its nodes (and groups), as
-/// `explain` gives them; then the marks.
-pub(crate) fn label_text(reach: &PairReach, why: &Explanation) -> String {
+/// the override, or the calculator (where one, or a pair-created callback,
+/// is installed and the rule is not the default calculation's), or `kept`
+/// (a rule the rules no longer give, kept by the `Manual` policy), or the
+/// stage with its nodes (and groups), as `explain` gives them; then the
+/// marks.
+pub(crate) fn label_text(reach: &PairReach, why: &Explanation, calculated: bool) -> String {
     let mut text = format!("{:?}: ", reach.rule);
     let nodes = |text: &mut String| {
         if let Some((a, b)) = why.nodes {
@@ -52,8 +54,11 @@ pub(crate) fn label_text(reach: &PairReach, why: &Explanation) -> String {
     };
     if reach.overridden {
         text.push_str("override");
-    } else if why.rule != reach.rule {
+    } else if why.rule != reach.rule && calculated {
         text.push_str("calculator");
+    } else if why.rule != reach.rule {
+        // The pair keeps the rule it had (the `Manual` policy).
+        text.push_str("kept");
     } else {
         match why.stage {
             Stage::Specific => {

@@ -80,7 +80,8 @@ pub struct RulePalette {
     pub defer: RuleColor,
     /// A collider the planner gave Rapier groups or types ([`Reach::Planned`]): teal.
     pub planned: RuleColor,
-    /// A collider that carries the hook ([`Reach::Hooked`]): red.
+    /// A collider that carries the hook ([`Reach::Hooked`]): violet, a hue
+    /// far from Rapier's own collider colours (red to orange).
     pub hooked: RuleColor,
     /// The mark of a pair whose rule was given with `set_pair_rule`: yellow.
     pub overridden: RuleColor,
@@ -98,7 +99,7 @@ impl Default for RulePalette {
             not_live: RuleColor(0x9d, 0x9d, 0x9d),
             defer: RuleColor(0xd9, 0xd9, 0xd9),
             planned: RuleColor(0x72, 0xb7, 0xb2),
-            hooked: RuleColor(0xe4, 0x57, 0x56),
+            hooked: RuleColor(0x94, 0x67, 0xbd),
             overridden: RuleColor(0xee, 0xca, 0x3b),
             ending: RuleColor(0xff, 0x9d, 0xa6),
         }

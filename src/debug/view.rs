@@ -19,7 +19,7 @@ use super::{RuleDebugFilter, RuleLabelBackend, RulePalette};
 /// - **tints**: the shape of a collider the rules reach is drawn in the
 ///   palette's hue for [`Reach::Planned`](super::super::Reach::Planned)
 ///   (teal: the planner wrote Rapier groups) or
-///   [`Reach::Hooked`](super::super::Reach::Hooked) (red: the hook answers
+///   [`Reach::Hooked`](super::super::Reach::Hooked) (violet: the hook answers
 ///   its pairs), keeping Rapier's lightness, so sleeping colliders stay
 ///   dim; an unreached collider keeps Rapier's colour;
 /// - **pairs**: a line between the centres of the two colliders of each
@@ -31,7 +31,11 @@ use super::{RuleDebugFilter, RuleLabelBackend, RulePalette};
 ///   an override (`set_pair_rule`, yellow, along the axes) or ends
 ///   ([`Until`](super::super::Until), pink, across them).
 ///
-/// A world the rules do not reach is drawn exactly as Rapier draws it.
+/// A world the rules do not reach (no rule, and no full pass: no
+/// calculator, pair-created callback or `Manual` policy, and the planner
+/// on; see [`StepStats::full_pass`](super::super::StepStats::full_pass),
+/// under which every collider is hooked) is drawn exactly as Rapier draws
+/// it.
 /// Nothing is kept between frames and nothing runs while the view is not
 /// drawn; drawing it costs Rapier's drawing and a pass over the live pairs.
 ///
@@ -106,8 +110,10 @@ impl RuleDebugRender {
 
     /// Draws what Rapier's pipeline draws of `world` (tinted), then the
     /// rules. `world` is a `&PhysicsWorld`, or a [`WorldRef::new`] over a
-    /// bare pipeline's sets: its joints and soft bodies are drawn if it has
-    /// them ([`WorldRef::with_joints`], [`WorldRef::with_soft_bodies`]).
+    /// bare pipeline's sets: its joints and soft bodies are drawn only if it
+    /// has them ([`WorldRef::with_joints`], [`WorldRef::with_soft_bodies`]),
+    /// where Rapier's `DebugRenderPipeline::render` takes them always. The
+    /// shapes are tinted only where the pipeline's mode draws them.
     pub fn render<'w>(
         &mut self,
         backend: &mut impl DebugRenderBackend,
@@ -133,7 +139,8 @@ impl RuleDebugRender {
     ) {
         let (bodies, colliders) = (world.bodies, world.colliders);
         self.pipeline.render_rigid_bodies(backend, bodies);
-        match tinted {
+        let shapes = self.pipeline.mode.contains(DebugRenderMode::COLLIDER_SHAPES);
+        match tinted.filter(|_| shapes) {
             Some(hooks) => {
                 let mode = self.pipeline.mode;
                 self.render_shapes(backend, hooks, world, false);
@@ -158,14 +165,17 @@ impl RuleDebugRender {
     /// Draws the tinted shapes of the colliders the rules reach (that the
     /// filter keeps) and nothing else: for a project whose own debug
     /// rendering draws Rapier's part (bevy_rapier's debug plugin), over
-    /// which these shapes lie. Drawn whatever [`tints`](Self::tints) says.
+    /// which these shapes lie. Drawn whatever [`tints`](Self::tints) and
+    /// the pipeline's mode say; nothing where the rules reach nothing.
     pub fn render_tints<'w>(
         &mut self,
         backend: &mut impl DebugRenderBackend,
         hooks: &RuleHooks,
         world: impl Into<WorldRef<'w>>,
     ) {
-        self.render_shapes(backend, hooks, world.into(), true);
+        if !hooks.reaches_nothing() {
+            self.render_shapes(backend, hooks, world.into(), true);
+        }
     }
 
     /// Rapier's drawing of the colliders' shapes, tinted: every collider's,
@@ -341,7 +351,7 @@ impl RuleDebugRender {
             let why = hooks
                 .rules()
                 .explain(world.bodies, world.colliders, line.a, line.b);
-            let text = label_text(&reach, &why);
+            let text = label_text(&reach, &why, hooks.calculates());
             let color = self.palette.rule(Some(reach.rule)).hsla(1.0);
             backend.draw_label(line.middle(), &text, color);
         });
@@ -356,6 +366,9 @@ impl RuleDebugRender {
         world: WorldRef<'w>,
         mut draw: impl FnMut(DebugRenderObject<'w>, Segment, PairReach),
     ) {
+        if hooks.reaches_nothing() {
+            return;
+        }
         let (bodies, colliders) = (world.bodies, world.colliders);
         let rules = hooks.rules();
         for (a, b, contact, pair) in hooks.reached_pairs(world) {

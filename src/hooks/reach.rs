@@ -88,6 +88,11 @@ mod drawn {
 
     /// The pairs the debug view draws.
     impl RuleHooks {
+        /// Whether a calculator or a pair-created callback decides pairs.
+        pub(crate) fn calculates(&self) -> bool {
+            self.decide.calculator.is_some() || self.decide.on_created.is_some()
+        }
+
         /// Whether the rules reach no collider and no pair: the debug view
         /// then draws what Rapier draws and nothing else.
         pub(crate) fn reaches_nothing(&self) -> bool {

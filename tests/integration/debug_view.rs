@@ -6,7 +6,7 @@
 use super::rapier::prelude::*;
 use super::rules::{
     CollisionRule, Reach, RuleDebugFilter, RuleDebugRender, RuleHooks, RuleLabelBackend,
-    RulePalette, Until,
+    RulePalette, Until, WorldRef,
 };
 
 use super::scenes::Scene;
@@ -52,7 +52,9 @@ fn object_of(object: DebugRenderObject) -> Object {
         DebugRenderObject::RigidBody(h, _) => Object::Body(h),
         DebugRenderObject::Collider(h, _) => Object::Collider(h),
         DebugRenderObject::ColliderAabb(h, _, _) => Object::Aabb(h),
-        DebugRenderObject::ContactPair(pair, _, _) => Object::Contact(pair.collider1, pair.collider2),
+        DebugRenderObject::ContactPair(pair, _, _) => {
+            Object::Contact(pair.collider1, pair.collider2)
+        }
         _ => Object::Other,
     }
 }
@@ -78,7 +80,8 @@ impl DebugRenderBackend for Recorder {
 
 impl RuleLabelBackend for Recorder {
     fn draw_label(&mut self, _at: Vector, text: &str, _color: [f32; 4]) {
-        self.labels.push((ColliderHandle::invalid(), text.to_owned()));
+        self.labels
+            .push((ColliderHandle::invalid(), text.to_owned()));
     }
 }
 
@@ -112,16 +115,23 @@ fn ruled_scene() -> RuledScene {
     let mut scene = Scene::new();
     let mut hooks = RuleHooks::default();
     let mut cubes = Vec::new();
-    for (i, rule) in [Normal, NoResponse, NoContacts, NoPair].into_iter().enumerate() {
+    for (i, rule) in [Normal, NoResponse, NoContacts, NoPair]
+        .into_iter()
+        .enumerate()
+    {
         let (body, collider) = scene.cube(-6.0 + 3.0 * i as f32, 0.5);
         hooks.rules_mut().set_specific(body, scene.ground, rule);
         cubes.push((rule, body, collider));
     }
-    let holder = scene.world.insert_body(RigidBodyBuilder::fixed().translation(at(-6.0, 0.5)));
+    let holder = scene
+        .world
+        .insert_body(RigidBodyBuilder::fixed().translation(at(-6.0, 0.5)));
     let sensor = scene
         .world
         .insert_collider(ColliderBuilder::ball(1.0).sensor(true), Some(holder));
-    hooks.rules_mut().set_specific(holder, cubes[0].1, NoResponse);
+    hooks
+        .rules_mut()
+        .set_specific(holder, cubes[0].1, NoResponse);
     let plain = [scene.cube(8.0, 0.5).1, scene.cube(8.0, 1.5).1];
     hooks.step(&mut scene.world);
     RuledScene {
@@ -162,11 +172,16 @@ fn each_live_pair_the_rules_reach_is_one_line_in_its_rules_colour() {
     // line names the first collider.
     let orange = palette.no_response.hsla(1.0);
     let no_response = recorder.in_color(orange);
-    assert_eq!(no_response.len(), 2, "the NoResponse cube and the sensor: {no_response:?}");
+    assert_eq!(
+        no_response.len(),
+        2,
+        "the NoResponse cube and the sensor: {no_response:?}"
+    );
     assert!(
         no_response
             .iter()
-            .any(|l| l.object == Object::Collider(s.sensor) || l.object == Object::Collider(s.cubes[0].2)),
+            .any(|l| l.object == Object::Collider(s.sensor)
+                || l.object == Object::Collider(s.cubes[0].2)),
         "{no_response:?}"
     );
     // The floor is reached (it names the cubes), so its pair with a cube no
@@ -224,11 +239,18 @@ fn colliders_are_tinted_by_how_the_rules_reach_them() {
                     "{:?}",
                     reach(collider)
                 ),
-                None => assert_eq!(color, style.collider_dynamic_color, "unreached: Rapier's colour"),
+                None => assert_eq!(
+                    color, style.collider_dynamic_color,
+                    "unreached: Rapier's colour"
+                ),
             }
         }
     }
-    assert_eq!(tints.len(), 3, "every way of being reached is in the scene: {tints:?}");
+    assert_eq!(
+        tints.len(),
+        3,
+        "every way of being reached is in the scene: {tints:?}"
+    );
     // Without tints, every shape has Rapier's colour.
     let mut view = RuleDebugRender {
         tints: false,
@@ -236,11 +258,13 @@ fn colliders_are_tinted_by_how_the_rules_reach_them() {
     };
     let plain = drawn(&mut view, &s);
     let cube = s.cubes[2].2;
-    assert!(plain
-        .lines
-        .iter()
-        .filter(|l| l.object == Object::Collider(cube))
-        .all(|l| l.hsla() == style.collider_dynamic_color));
+    assert!(
+        plain
+            .lines
+            .iter()
+            .filter(|l| l.object == Object::Collider(cube))
+            .all(|l| l.hsla() == style.collider_dynamic_color)
+    );
 }
 
 #[test]
@@ -249,7 +273,11 @@ fn the_filter_keeps_one_node_one_rule_or_the_hooked_pairs() {
     let palette = RulePalette::default();
     let pair_lines = |r: &Recorder| -> Vec<[f32; 4]> {
         let rules = [Normal, NoResponse, NoContacts].map(|r| palette.rule(Some(r)).hsla(1.0));
-        r.lines.iter().map(Line::hsla).filter(|c| rules.contains(c)).collect()
+        r.lines
+            .iter()
+            .map(Line::hsla)
+            .filter(|c| rules.contains(c))
+            .collect()
     };
     let mut view = RuleDebugRender::default();
     let all = s.hooks.pairs(&s.scene.world).count();
@@ -265,7 +293,10 @@ fn the_filter_keeps_one_node_one_rule_or_the_hooked_pairs() {
     view.filter = RuleDebugFilter::default().node(s.cubes[0].1);
     let mut lines = pair_lines(&drawn(&mut view, &s));
     lines.sort_by(|a, b| a[0].total_cmp(&b[0]));
-    assert_eq!(lines, [palette.no_response.hsla(1.0), palette.normal.hsla(1.0)]);
+    assert_eq!(
+        lines,
+        [palette.no_response.hsla(1.0), palette.normal.hsla(1.0)]
+    );
 
     // The pairs of the hooked cubes: the Normal cube's two, the NoContacts one.
     view.filter = RuleDebugFilter::default().hooked_only();
@@ -293,7 +324,10 @@ fn the_filter_keeps_one_node_one_rule_or_the_hooked_pairs() {
     view.render(&mut recorder2, &s.hooks, &s.scene.world);
     let orange = palette.no_response.hsla(1.0);
     assert_eq!(
-        recorder.in_color(orange).len().min(recorder2.in_color(orange).len()),
+        recorder
+            .in_color(orange)
+            .len()
+            .min(recorder2.in_color(orange).len()),
         1,
         "the refused pair is not drawn, the sensor's is"
     );
@@ -304,7 +338,10 @@ fn overrides_and_rules_with_an_end_are_marked() {
     let mut s = ruled_scene();
     let palette = RulePalette::default();
     let (normal_cube, floor) = (s.cubes[0].2, s.scene.floor);
-    assert!(s.hooks.set_pair_rule(&s.scene.world, normal_cube, floor, NoContacts));
+    assert!(
+        s.hooks
+            .set_pair_rule(&s.scene.world, normal_cube, floor, NoContacts)
+    );
     let ending = s.cubes[1].1;
     s.hooks
         .rules_mut()
@@ -313,7 +350,11 @@ fn overrides_and_rules_with_an_end_are_marked() {
     let recorder = drawn(&mut RuleDebugRender::default(), &s);
     let yellow = recorder.in_color(palette.overridden.hsla(1.0));
     assert_eq!(yellow.len(), DIM, "a cross along the axes: {yellow:?}");
-    assert!(yellow.iter().all(|l| matches!(l.object, Object::Contact(..))));
+    assert!(
+        yellow
+            .iter()
+            .all(|l| matches!(l.object, Object::Contact(..)))
+    );
     let pink = recorder.in_color(palette.ending.hsla(1.0));
     assert_eq!(pink.len(), 2, "a cross across the axes: {pink:?}");
     // The mark sits at the middle of its pair's line.
@@ -331,26 +372,40 @@ fn overrides_and_rules_with_an_end_are_marked() {
         .map(|(a, b)| (f32::from_bits(*a) + f32::from_bits(*b)) * 0.5)
         .collect();
     for (m, k) in middle.iter().zip(&mark) {
-        assert!((m - k).abs() < 1e-5, "mark at {mark:?}, line's middle {middle:?}");
+        assert!(
+            (m - k).abs() < 1e-5,
+            "mark at {mark:?}, line's middle {middle:?}"
+        );
     }
     let mut view = RuleDebugRender {
         marks: false,
         ..RuleDebugRender::default()
     };
-    assert!(drawn(&mut view, &s).in_color(palette.overridden.hsla(1.0)).is_empty());
+    assert!(
+        drawn(&mut view, &s)
+            .in_color(palette.overridden.hsla(1.0))
+            .is_empty()
+    );
 }
 
 #[test]
 fn labels_say_what_explain_says() {
     let mut s = ruled_scene();
     let (normal_cube, floor) = (s.cubes[0].2, s.scene.floor);
-    assert!(s.hooks.set_pair_rule(&s.scene.world, normal_cube, floor, NoContacts));
+    assert!(
+        s.hooks
+            .set_pair_rule(&s.scene.world, normal_cube, floor, NoContacts)
+    );
     s.hooks.step(&mut s.scene.world);
     let mut recorder = Recorder::default();
     RuleDebugRender::default().render_labels(&mut recorder, &s.hooks, &s.scene.world);
     // Each label as its rule, what decided, and the two nodes in either
     // order; `, hooked` counted apart.
-    let hooked_labels = recorder.labels.iter().filter(|(_, t)| t.ends_with(", hooked")).count();
+    let hooked_labels = recorder
+        .labels
+        .iter()
+        .filter(|(_, t)| t.ends_with(", hooked"))
+        .count();
     let mut labels: Vec<(String, String, Vec<String>)> = recorder
         .labels
         .iter()
@@ -358,7 +413,11 @@ fn labels_say_what_explain_says() {
             let text = text.trim_end_matches(", hooked");
             let (rule, why) = text.split_once(": ").expect("rule: why");
             let (stage, nodes) = why.split_once(' ').unwrap_or((why, ""));
-            let mut nodes: Vec<String> = nodes.split(" / ").filter(|n| !n.is_empty()).map(str::to_owned).collect();
+            let mut nodes: Vec<String> = nodes
+                .split(" / ")
+                .filter(|n| !n.is_empty())
+                .map(str::to_owned)
+                .collect();
             nodes.sort();
             (rule.to_owned(), stage.to_owned(), nodes)
         })
@@ -378,7 +437,11 @@ fn labels_say_what_explain_says() {
         entry("NoContacts", s.cubes[2].1, ground),
         entry("NoResponse", holder, s.cubes[0].1),
         // The plain cube on the reached floor.
-        ("Normal".to_owned(), "default".to_owned(), vec!["rule".to_owned()]),
+        (
+            "Normal".to_owned(),
+            "default".to_owned(),
+            vec!["rule".to_owned()],
+        ),
     ];
     expected.sort();
     assert_eq!(labels, expected);
@@ -390,28 +453,42 @@ fn labels_say_what_explain_says() {
     assert_eq!(hooked_labels, hooked_pairs, "{:?}", recorder.labels);
 }
 
-#[test]
-fn a_world_without_rules_is_drawn_exactly_as_rapier_draws_it() {
-    // Every mode of Rapier's drawing, over bodies of every type, a joint, a
-    // sensor, contacts and a soft body, at several instants.
+/// Bodies of every type, joints, a sensor, contacts and a soft body; the
+/// boxes' bodies.
+fn every_kind_world() -> (PhysicsWorld, Vec<RigidBodyHandle>) {
     let mut world = PhysicsWorld::new();
     let ground = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
     world.insert_collider(cuboid(20.0, 0.5, 20.0), Some(ground));
-    let mut last = None;
+    let mut boxes: Vec<RigidBodyHandle> = Vec::new();
     for i in 0..4 {
-        let body = world.insert_body(RigidBodyBuilder::dynamic().translation(at(-3.0 + 2.0 * i as f32, 1.0)));
+        let body = world
+            .insert_body(RigidBodyBuilder::dynamic().translation(at(-3.0 + 2.0 * i as f32, 1.0)));
         world.insert_collider(cuboid(0.5, 0.5, 0.5), Some(body));
-        if let Some(previous) = last {
+        if let Some(&previous) = boxes.last() {
             world.insert_impulse_joint(previous, body, ball_joint(at(-2.0, 0.0)));
         }
-        last = Some(body);
+        boxes.push(body);
     }
-    let platform = world.insert_body(RigidBodyBuilder::kinematic_velocity_based().translation(at(6.0, 2.0)));
+    let platform =
+        world.insert_body(RigidBodyBuilder::kinematic_velocity_based().translation(at(6.0, 2.0)));
     world.insert_collider(cuboid(1.0, 0.2, 1.0), Some(platform));
-    world.insert_collider(ColliderBuilder::ball(1.5).sensor(true).translation(at(-3.0, 1.0)), None);
+    world.insert_collider(
+        ColliderBuilder::ball(1.5)
+            .sensor(true)
+            .translation(at(-3.0, 1.0)),
+        None,
+    );
     world.insert_soft_body(soft_block(at(10.0, 0.8), 0.5));
+    (world, boxes)
+}
+
+#[test]
+fn a_world_without_rules_is_drawn_exactly_as_rapier_draws_it() {
+    // Every mode of Rapier's drawing, at several instants.
+    let (mut world, _) = every_kind_world();
     let mut hooks = RuleHooks::default();
-    let mut view = RuleDebugRender::new(DebugRenderPipeline::render_all(DebugRenderStyle::default()));
+    let mut view =
+        RuleDebugRender::new(DebugRenderPipeline::render_all(DebugRenderStyle::default()));
     let mut rapiers = DebugRenderPipeline::render_all(DebugRenderStyle::default());
     for step in 0..40 {
         hooks.step(&mut world);
@@ -422,13 +499,88 @@ fn a_world_without_rules_is_drawn_exactly_as_rapier_draws_it() {
         view.render(&mut ours, &hooks, &world);
         let mut theirs = Recorder::default();
         world.debug_render(&mut rapiers, &mut theirs);
-        assert!(theirs.lines.len() > 100, "Rapier drew {} lines", theirs.lines.len());
+        assert!(
+            theirs.lines.len() > 100,
+            "Rapier drew {} lines",
+            theirs.lines.len()
+        );
         assert!(
             ours.lines == theirs.lines,
             "step {step}: {} lines drawn, Rapier drew {}",
             ours.lines.len(),
             theirs.lines.len()
         );
+    }
+}
+
+#[test]
+fn rapiers_part_is_drawn_as_rapier_draws_it_in_every_mode_where_rules_reach_some_colliders() {
+    let (mut world, boxes) = every_kind_world();
+    let mut hooks = RuleHooks::default();
+    hooks
+        .rules_mut()
+        .set_specific(boxes[0], boxes[1], CollisionRule::NoContacts);
+    hooks
+        .rules_mut()
+        .set_personal(boxes[3], CollisionRule::NoResponse);
+    for _ in 0..20 {
+        hooks.step(&mut world);
+    }
+    let reached: Vec<ColliderHandle> = world
+        .colliders
+        .iter()
+        .map(|(h, _)| h)
+        .filter(|&h| hooks.reach(h) != Reach::Unreached)
+        .collect();
+    assert!(reached.len() >= 3 && reached.len() < world.colliders.len());
+    let mut modes: Vec<DebugRenderMode> = DebugRenderMode::all().iter().collect();
+    modes.push(DebugRenderMode::all());
+    modes.push(DebugRenderMode::default());
+    for mode in modes {
+        let style = DebugRenderStyle::default();
+        // A bare pipeline's sets, with the joints and soft bodies.
+        let bare = WorldRef::new(&world.narrow_phase, &world.bodies, &world.colliders)
+            .with_joints(&world.impulse_joints, &world.multibody_joints)
+            .with_soft_bodies(&world.soft_bodies);
+        let mut theirs = Recorder::default();
+        DebugRenderPipeline::new(style, mode).render(
+            &mut theirs,
+            &world.bodies,
+            &world.colliders,
+            &world.impulse_joints,
+            &world.multibody_joints,
+            &world.narrow_phase,
+            &world.soft_bodies,
+        );
+        for tints in [false, true] {
+            let mut view = RuleDebugRender {
+                tints,
+                ..RuleDebugRender::new(DebugRenderPipeline::new(style, mode))
+            };
+            let mut ours = Recorder::default();
+            view.render(&mut ours, &hooks, bare);
+            assert!(ours.lines.len() >= theirs.lines.len(), "{mode:?}");
+            let rapiers_part = &ours.lines[..theirs.lines.len()];
+            for (o, t) in rapiers_part.iter().zip(&theirs.lines) {
+                let tinted =
+                    tints && matches!(o.object, Object::Collider(c) if reached.contains(&c));
+                if tinted {
+                    // Only the hue and saturation differ.
+                    let same = (&o.object, &o.from, &o.to, &o.color[2..])
+                        == (&t.object, &t.from, &t.to, &t.color[2..]);
+                    assert!(same, "{mode:?}, tinted: {o:?} against Rapier's {t:?}");
+                } else {
+                    assert_eq!(o, t, "{mode:?}, tints {tints}");
+                }
+            }
+            // What follows is the rules' lines: pairs and marks.
+            assert!(
+                ours.lines[theirs.lines.len()..]
+                    .iter()
+                    .all(|l| !matches!(l.object, Object::Body(_) | Object::Aabb(_))),
+                "{mode:?}"
+            );
+        }
     }
 }
 
@@ -447,11 +599,18 @@ fn render_tints_draws_only_the_shapes_the_rules_reach() {
         .lines
         .iter()
         .filter(|l| match l.object {
-            Object::Collider(c) => s.hooks.reach(c) != Reach::Unreached && !rules.contains(&l.hsla()),
+            Object::Collider(c) => {
+                s.hooks.reach(c) != Reach::Unreached && !rules.contains(&l.hsla())
+            }
             _ => false,
         })
         .collect();
     assert!(!expected.is_empty());
     assert_eq!(tints.lines.iter().collect::<Vec<_>>(), expected);
-    assert!(tints.lines.iter().all(|l| l.object != Object::Collider(s.plain[0])));
+    assert!(
+        tints
+            .lines
+            .iter()
+            .all(|l| l.object != Object::Collider(s.plain[0]))
+    );
 }

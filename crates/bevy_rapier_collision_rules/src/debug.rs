@@ -9,7 +9,7 @@ use bevy_rapier::plugin::context::{
     RapierContextColliders, RapierContextJoints, RapierContextSimulation, RapierRigidBodySet,
 };
 use bevy_rapier::rapier::prelude::{
-    ColliderHandle, DebugColor, DebugRenderBackend, DebugRenderObject, DebugRenderPipeline, Vector,
+    ColliderHandle, DebugColor, DebugRenderBackend, DebugRenderObject, Vector,
 };
 
 use super::CollisionRules;
@@ -26,7 +26,11 @@ use crate::collision_rules::{
 /// [`CollisionRulesPlugin`](super::CollisionRulesPlugin) and Bevy's gizmos
 /// (in `DefaultPlugins`). Each context gets a [`CollisionRulesDebug`],
 /// which turns it on and off at runtime and filters it, and a
-/// [`RuleDebugLines`] with what was drawn last.
+/// [`RuleDebugLines`] with what was drawn last. The tinted outlines are
+/// drawn for every collider the rules reach, whatever bevy_rapier's own
+/// debug settings say of it (this crate builds bevy_rapier without its
+/// debug rendering, so it cannot read them): narrow them with the
+/// filter of [`CollisionRulesDebug`].
 ///
 /// ```
 /// use bevy::prelude::*;
@@ -135,7 +139,8 @@ pub struct CollisionRulesDebug {
     pub hooked_only: bool,
     /// The colours.
     pub palette: RulePalette,
-    /// The length of a mark's strokes.
+    /// The length of a mark's strokes, in metres (times the context's
+    /// length unit: bevy_rapier2d's pixels per metre).
     pub mark_size: f32,
 }
 
@@ -158,15 +163,26 @@ impl Default for CollisionRulesDebug {
 
 /// What the debug view of a context drew in the last frame, as handed to
 /// the gizmos.
-#[derive(Component, Default, Debug)]
-pub struct RuleDebugLines(Vec<RuleDebugLine>);
+#[derive(Component, Default)]
+pub struct RuleDebugLines {
+    lines: Vec<RuleDebugLine>,
+    /// The core's view, kept from frame to frame (Rapier's pipeline builds
+    /// its shapes' outlines when it is made).
+    view: Option<RuleDebugRender>,
+}
 
 impl RuleDebugLines {
     /// The lines, in the order they were drawn: tinted shapes, then each
     /// pair's line and marks.
     #[must_use]
     pub fn lines(&self) -> &[RuleDebugLine] {
-        &self.0
+        &self.lines
+    }
+}
+
+impl std::fmt::Debug for RuleDebugLines {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_tuple("RuleDebugLines").field(&self.lines).finish()
     }
 }
 
@@ -207,7 +223,8 @@ fn collect_rule_lines(
     )>,
 ) {
     for (rules, debug, mut lines, simulation, colliders, joints, bodies) in &mut contexts {
-        lines.0.clear();
+        let lines = &mut *lines;
+        lines.lines.clear();
         if !debug.enabled {
             continue;
         }
@@ -224,9 +241,10 @@ fn collect_rule_lines(
             // The entity has no body or collider in this context.
             continue;
         }
-        let mut view = RuleDebugRender::new(DebugRenderPipeline::default());
+        let view = lines.view.get_or_insert_with(RuleDebugRender::default);
         view.palette = debug.palette;
-        view.mark_size = debug.mark_size;
+        // In the context's units (bevy_rapier2d's pixels per metre).
+        view.mark_size = debug.mark_size * simulation.integration_parameters.length_unit;
         (view.pairs, view.marks) = (debug.pairs, debug.marks);
         view.filter = RuleDebugFilter {
             node,
@@ -246,13 +264,14 @@ fn collect_rule_lines(
         };
         if debug.tints {
             let mut shapes = Shapes {
-                lines: &mut lines.0,
+                lines: &mut lines.lines,
                 entity: &entity,
             };
             view.render_tints(&mut shapes, rules.hooks(), world);
         }
+        let drawn = &mut lines.lines;
         view.rule_lines(rules.hooks(), world, |line| {
-            lines.0.push(RuleDebugLine {
+            drawn.push(RuleDebugLine {
                 start: vec3(line.from),
                 end: vec3(line.to),
                 color: hsla(line.color),

@@ -130,7 +130,10 @@ pub mod prelude {
         RuleGroup, RuleHooks, RulePalette, RuleQueries, RuleTable, SpecificRules, Until, WorldRef,
     };
     #[cfg(feature = "debug-render")]
-    pub use super::{CollisionRulesDebug, CollisionRulesDebugPlugin, RuleDebugLines};
+    pub use super::{
+        CollisionRulesDebug, CollisionRulesDebugPlugin, RuleDebugLine, RuleDebugLines,
+        RuleDebugObject,
+    };
 }
 
 /// `docs/bevy.md`, whose Rust snippets `cargo test --doc` compiles and

@@ -7,7 +7,6 @@ use CollisionRule::*;
 use bevy::prelude::*;
 use bevy_rapier::prelude::*;
 use bevy_rapier_collision_rules::prelude::*;
-use bevy_rapier_collision_rules::{RuleDebugLine, RuleDebugObject};
 
 use super::scene::{Sim, ball, floor};
 
@@ -16,7 +15,7 @@ fn color(c: RuleColor) -> Color {
     Color::hsla(h, s, l, a)
 }
 
-use bevy_rapier_collision_rules::RuleColor;
+use bevy_rapier_collision_rules::{Reach, RuleColor};
 
 fn debug_sim() -> Sim {
     Sim::from_plugins((
@@ -179,10 +178,46 @@ fn the_view_is_toggled_and_filtered_per_context_at_runtime() {
     assert_eq!(drawn.len(), 1, "{drawn:?}");
     assert_eq!(drawn[0].color, color(RulePalette::default().no_response));
 
-    // One rule.
+    // The pairs the hook answers: the NoContacts ball's (it carries the
+    // hook), with its tint.
     {
         let mut debug = view(&mut s.sim, first);
         debug.entity = None;
+        debug.tints = true;
+        debug.hooked_only = true;
+    }
+    s.sim.run(1);
+    let drawn = lines(&mut s.sim, first);
+    let pairs: Vec<_> = drawn
+        .iter()
+        .filter(|l| matches!(l.object, RuleDebugObject::Pair(..)))
+        .collect();
+    // The NoContacts ball carries the hook; every pair drawn has a hooked
+    // collider, and only hooked colliders are tinted.
+    let hooked = |sim: &mut Sim, e: Entity| {
+        let handle = sim.app.world().get::<RapierColliderHandle>(e).unwrap().0;
+        sim.rules().hooks().reach(handle) == Reach::Hooked
+    };
+    assert!(
+        pair_lines(&drawn, s.balls[2].1, s.floor)
+            .iter()
+            .any(|l| l.color == color(RulePalette::default().no_contacts)),
+        "{pairs:?}"
+    );
+    for line in &drawn {
+        match line.object {
+            RuleDebugObject::Pair(a, b) => {
+                assert!(hooked(&mut s.sim, a) || hooked(&mut s.sim, b), "{line:?}")
+            }
+            RuleDebugObject::Collider(c) => assert!(hooked(&mut s.sim, c), "{line:?}"),
+        }
+    }
+    view(&mut s.sim, first).hooked_only = false;
+
+    // One rule.
+    {
+        let mut debug = view(&mut s.sim, first);
+        debug.tints = false;
         debug.rule = Some(Normal);
     }
     s.sim.run(1);
@@ -260,4 +295,24 @@ fn the_lines_reach_bevys_gizmos() {
         .map(|(_, a)| a.buffer().list_positions.len())
         .sum();
     assert_eq!(positions, 2 * drawn.len());
+}
+
+#[test]
+fn the_view_draws_every_frame_whatever_schedule_the_physics_steps_in() {
+    let mut sim = Sim::from_plugins((
+        RapierPhysicsPlugin::<CollisionRulesHooks>::default().in_fixed_schedule(),
+        CollisionRulesPlugin::default().in_fixed_schedule(),
+        CollisionRulesDebugPlugin::default(),
+    ));
+    let floor = sim.spawn(floor());
+    let ball = sim.spawn((
+        ball(0.0, 0.24),
+        SpecificRules::new().with(floor, NoResponse),
+    ));
+    sim.run(5);
+    let context = sim.context();
+    let drawn = lines(&mut sim, context);
+    let pair = pair_lines(&drawn, ball, floor);
+    assert_eq!(pair.len(), 1, "{drawn:?}");
+    assert_eq!(pair[0].color, color(RulePalette::default().no_response));
 }

@@ -61,7 +61,12 @@ fn ratio(mut a: impl FnMut() -> f32, mut b: impl FnMut() -> f32) -> (f64, f64, f
     }
     ratios.sort_by(f64::total_cmp);
     let per_draw = a_time / (REPEATS * DRAWS) as u32;
-    (ratios[REPEATS / 2], ratios[0], ratios[REPEATS - 1], per_draw)
+    (
+        ratios[REPEATS / 2],
+        ratios[0],
+        ratios[REPEATS - 1],
+        per_draw,
+    )
 }
 
 fn main() {

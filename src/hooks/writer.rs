@@ -91,7 +91,7 @@ impl RuleHooks {
         self.count_hooked();
         // The set's copy of the decisions is the plan's (a set built by
         // code and put in place of another starts without them).
-        self.planned.plan.decisions.take_journal();
+        self.planned.plan.decisions.drain_journal().for_each(drop);
         self.decide.rules.decisions = self.planned.plan.decisions.all().collect();
     }
 
@@ -277,10 +277,11 @@ impl RuleHooks {
     /// After the phases before a step: the decisions made and undone are
     /// copied into the rule set, which a saved set carries.
     pub(super) fn copy_decisions(&mut self) {
-        for (entry, decision) in self.planned.plan.decisions.take_journal() {
+        let copy = &mut self.decide.rules.decisions;
+        for (entry, decision) in self.planned.plan.decisions.drain_journal() {
             match decision {
-                Some(decision) => self.decide.rules.decisions.insert(entry, decision),
-                None => self.decide.rules.decisions.remove(&entry),
+                Some(decision) => copy.insert(entry, decision),
+                None => copy.remove(&entry),
             };
         }
     }

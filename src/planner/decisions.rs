@@ -148,9 +148,12 @@ impl Decisions {
         self.made.iter().map(|(&entry, &decision)| (entry, decision))
     }
 
-    /// The decisions made and undone since the last call, in order.
-    pub(crate) fn take_journal(&mut self) -> Vec<((Node, Node), Option<Decision>)> {
-        std::mem::take(&mut self.journal)
+    /// The decisions made and undone since the last call, in order (the
+    /// journal keeps its room for the next step's).
+    pub(crate) fn drain_journal(
+        &mut self,
+    ) -> impl Iterator<Item = ((Node, Node), Option<Decision>)> + '_ {
+        self.journal.drain(..)
     }
 
     /// The entries listed under `node`, in no order.

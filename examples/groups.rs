@@ -13,6 +13,11 @@ use rapier_collision_rules::{
     CollisionGroup, CollisionRule, CollisionRuleSet, RuleColor, RuleHooks, RulePalette, Stage,
 };
 use rapier3d::prelude::*;
+// The legend's file names the crate's tree for the dimension `rules`.
+use rapier_collision_rules::dim3 as rules;
+
+#[path = "common/legend.rs"]
+mod legend;
 
 /// The game's groups and their table: players, enemies, projectiles, debris.
 fn game_rules() -> (CollisionRuleSet, [CollisionGroup; 4]) {
@@ -215,23 +220,7 @@ fn matrix(names: &[&str], cells: &[(usize, usize, CollisionRule, Option<&str>)])
     }
     // The legend: the palette's rule colours.
     let y = top + n * cell_h + 36.0;
-    let mut x = 16.0;
-    for rule in [
-        CollisionRule::Normal,
-        CollisionRule::NoResponse,
-        CollisionRule::NoContacts,
-        CollisionRule::NoPair,
-    ] {
-        let name = format!("{rule:?}");
-        let _ = writeln!(
-            svg,
-            r##"<rect x="{x}" y="{}" width="24" height="14" fill="{}"/><text x="{}" y="{y}" font-size="12" fill="#111111">{name}</text>"##,
-            y - 11.0,
-            palette.rule(Some(rule)).hex(),
-            x + 30.0
-        );
-        x += 50.0 + 7.5 * name.len() as f32;
-    }
+    legend::rule_swatches(&mut svg, &palette, (16.0, y), "#111111");
     let _ = writeln!(
         svg,
         r##"<text x="16" y="{}" font-size="12" fill="#444444">"(default)": the table has no entry for the two groups (group_rule gives Defer),</text>

@@ -23,6 +23,8 @@ use rapier_collision_rules::dim3 as rules;
 use rapier3d as rapier;
 use rapier3d::prelude::*;
 
+#[path = "../common/legend.rs"]
+mod legend;
 mod scene;
 mod view;
 

@@ -642,23 +642,7 @@ fn legend(
         r#"<text x="{left}" y="{y}" font-size="13" font-weight="bold" fill="{INK}">The colour of a panel: the rule of its pair</text>"#
     );
     y += 22.0;
-    let mut x = left;
-    for rule in [
-        CollisionRule::Normal,
-        CollisionRule::NoResponse,
-        CollisionRule::NoContacts,
-        CollisionRule::NoPair,
-    ] {
-        let name = format!("{rule:?}");
-        let _ = writeln!(
-            svg,
-            r#"<rect x="{x}" y="{}" width="24" height="12" fill="{}"/><text x="{}" y="{y}" font-size="12" fill="{INK}">{name}</text>"#,
-            y - 10.0,
-            palette.rule(Some(rule)).hex(),
-            x + 29.0
-        );
-        x += 44.0 + text_width(&name, 12.0);
-    }
+    crate::legend::rule_swatches(svg, palette, (left, y), INK);
     y += 30.0;
     let _ = writeln!(
         svg,

@@ -21,6 +21,8 @@ use rapier_collision_rules::dim2 as rules;
 use rapier2d as rapier;
 use rapier2d::prelude::*;
 
+#[path = "../common/legend.rs"]
+mod legend;
 #[path = "../showcase/scene.rs"]
 mod scene;
 #[path = "../showcase/view.rs"]

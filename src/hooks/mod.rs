@@ -44,7 +44,7 @@ use super::rapier::prelude::*;
 
 use super::model::HandleMap;
 use super::planner::Plan;
-use super::world::{Census, Settings, Written};
+use super::world::{Census, Mark, Settings, Written};
 use super::{CollisionRule, CollisionRuleSet, Node};
 
 pub use pair_state::ManifoldUpdate;
@@ -254,6 +254,9 @@ struct Planned {
     written: HandleMap<ColliderHandle, Written>,
     /// Colliders given the contact-modification flag for `ManifoldUpdate::Never`.
     modifying: HashSet<ColliderHandle>,
+    /// The colliders of a loaded world whose mark the hooks read at their
+    /// first step (see `RuleHooks::adopt_marks`), until that step's plan.
+    loaded: Vec<ColliderHandle>,
 }
 
 impl std::fmt::Debug for RuleHooks {
@@ -317,6 +320,7 @@ impl RuleHooks {
                 hooked: 0,
                 written: HandleMap::default(),
                 modifying: HashSet::new(),
+                loaded: Vec::new(),
             },
             stats: StepStats::default(),
             soft: soft_bodies::SoftBodies::default(),
@@ -568,6 +572,7 @@ impl RuleHooks {
         for (handle, written) in self.planned.written.iter() {
             if let Some(collider) = colliders.get_mut(handle) {
                 written.own_as_of(Settings::of(collider)).write(collider);
+                collider.set_active_events(Mark::default().in_events(collider.active_events()));
             }
             self.planned.roster.wrote(handle, None);
         }

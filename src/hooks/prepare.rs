@@ -101,6 +101,9 @@ impl RuleHooks {
         graph: Option<&NarrowPhase>,
     ) {
         self.open_step();
+        if self.boundary.step == 1 {
+            self.adopt_marks(colliders);
+        }
         self.settle_pieces(colliders);
         self.end_rules(bodies, colliders);
         let full = self.full_pass();
@@ -123,6 +126,9 @@ impl RuleHooks {
             self.note_edit(None);
         } else if !under.is_empty() {
             self.note_edit(Some(&under));
+        }
+        if !self.planned.loaded.is_empty() {
+            self.report_loaded();
         }
         self.recalculate_changed(bodies, colliders, under, changed.everything);
         for c in std::mem::take(&mut self.queued.wake_colliders) {

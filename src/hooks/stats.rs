@@ -140,4 +140,10 @@ pub struct StepStats {
     /// logs one warning): see `docs/semantics.md`, "Stepping without the
     /// hooks".
     pub stepped_without_hooks: bool,
+    /// At the hooks' first step: colliders of a loaded world that carried
+    /// the writes of rules that no rule given now reaches, given their
+    /// project's settings back (one warning is logged): the world then
+    /// steps as the rules given now say, not as the run it was saved from
+    /// (`docs/semantics.md`, "Saving and loading").
+    pub loaded_writes_given_back: usize,
 }

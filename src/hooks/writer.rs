@@ -7,7 +7,7 @@ use super::{ManifoldUpdate, PlanCause, RecalculationPolicy, RuleHooks, own_setti
 use super::super::model::dynamic_body;
 use super::super::planner::decisions::Decisions;
 use super::super::planner::{self, ColliderPlan, Request};
-use super::super::world::{Settings, Written};
+use super::super::world::{Mark, Settings, Written};
 
 /// Writing the plan.
 impl RuleHooks {
@@ -46,6 +46,7 @@ impl RuleHooks {
             pairs_of: &pairs_of,
             decided: &self.planned.plan.decisions,
             soft_bodies: self.soft.present,
+            loaded: !self.planned.loaded.is_empty(),
         };
         let plan = planner::plan(&request);
         // Never pairs: the hooked side also modifies the pair's contacts.
@@ -124,6 +125,7 @@ impl RuleHooks {
             pairs_of: &pairs_of,
             decided: &decided,
             soft_bodies: self.soft.present,
+            loaded: false,
         };
         let Some(planned) = planner::replan_some(&mut self.planned.plan, &request, &handles) else {
             // The whole plan plans the candidates too (see `apply_plan`).
@@ -200,14 +202,17 @@ impl RuleHooks {
             self.queued.touched.push(handle);
         }
         // The collider is the project's again once the crate adds nothing.
-        if target == own {
-            self.keep_written(handle, None);
-            self.planned.roster.wrote(handle, None);
-        } else {
-            self.keep_written(handle, Some(Written { own, wrote: target }));
-            self.planned.roster.wrote(handle, Some(target));
-        }
+        let written = (target != own).then_some(Written { own, wrote: target });
+        self.keep_written(handle, written);
+        self.planned.roster.wrote(handle, written.map(|w| w.wrote));
+        // The collider carries the mark of what is the crate's, which a
+        // world saved by any means keeps (`world/mark.rs`).
+        let events = current.active_events();
+        let marked = Mark::of_written(written.as_ref()).in_events(events);
         if target == now {
+            if marked != events {
+                colliders[handle].set_active_events(marked);
+            }
             return;
         }
         // New settings take effect on a sleeping body once it wakes (a pair
@@ -231,6 +236,7 @@ impl RuleHooks {
             collider.set_collision_groups(InteractionGroups::none());
         }
         target.write(collider);
+        collider.set_active_events(marked);
     }
 }
 
@@ -271,6 +277,55 @@ impl RuleHooks {
         if self.planned.plan.decisions.is_empty() {
             let saved = self.decide.rules.decisions.iter().map(|(&e, &d)| (e, d));
             self.planned.plan.decisions.seed(saved);
+        }
+    }
+
+    /// At the hooks' first step, what a loaded world's colliders carry of
+    /// the run it was saved from, where the rule set does not carry it (a
+    /// world saved alone, its rules given again by code): a collider with
+    /// the crate's mark holds the crate's writes, and its mark says which,
+    /// so the project's settings under them are read back exactly
+    /// (`docs/semantics.md`, "Saving and loading"). Each is planned at this
+    /// step; the first plan decides the specific entries as the world's
+    /// settings show they were decided.
+    pub(super) fn adopt_marks(&mut self, colliders: &ColliderSet) {
+        for (handle, collider) in colliders.iter() {
+            if self.planned.written.get(handle).is_some()
+                || self.decide.rules.writes.get(handle).is_some()
+            {
+                continue;
+            }
+            if let Some(written) = Mark::on(collider).written(Settings::of(collider)) {
+                self.keep_written(handle, Some(written));
+                self.planned.loaded.push(handle);
+            }
+        }
+        if !self.planned.loaded.is_empty() {
+            let loaded = self.planned.loaded.iter().copied();
+            self.queued.candidates.extend(loaded);
+            self.queued.replan.get_or_insert(PlanCause::FirstStep);
+        }
+    }
+
+    /// After the first step's plan: the loaded colliders that no rule given
+    /// now reaches have their project's settings back. Said once, for the
+    /// world now parts from the run it was saved from.
+    pub(super) fn report_loaded(&mut self) {
+        let loaded = std::mem::take(&mut self.planned.loaded);
+        let given_back = loaded
+            .iter()
+            .filter(|&&h| self.planned.written.get(h).is_none())
+            .count();
+        self.stats.loaded_writes_given_back = given_back;
+        if given_back > 0 {
+            log::warn!(
+                "{given_back} colliders of this world carry settings that collision rules wrote \
+                 in the run it was saved from, and no rule given now reaches them: they have \
+                 their project's settings back, so the world steps as the rules given now say, \
+                 not as the run it was saved from. To go on exactly, load the rule set saved \
+                 with the world, or give the same rules before the first step \
+                 (docs/semantics.md, \"Saving and loading\")"
+            );
         }
     }
 

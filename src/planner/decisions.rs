@@ -20,6 +20,7 @@ use super::class::Class;
 use super::collider_plan::ColliderPlan;
 use super::plan::{Request, ordered};
 use super::super::model::{CollidersUnder, Decision};
+use super::super::world::Mark;
 use super::super::{CollisionRule, Node};
 
 /// A collider's plan before the entries: its class's, a personal one, or
@@ -400,7 +401,14 @@ impl Decisions {
             under: (cx, cy),
         } in undone
         {
-            let bits = kind.and_then(|kind| self.bits_for(request, facts, (x, y), &cx, &cy, kind));
+            let found = if request.loaded {
+                self.found(request, facts, (x, y), &cx, &cy, kind)
+            } else {
+                None
+            };
+            let bits = found.or_else(|| {
+                kind.and_then(|kind| self.bits_for(request, facts, (x, y), &cx, &cy, kind))
+            });
             let decision = bits.unwrap_or_else(|| {
                 // The owner's side on a tie.
                 let (owner, owner_side, other, other_side) = if owner_is_first {
@@ -484,6 +492,86 @@ impl Decisions {
                 kind,
                 bit,
             })
+    }
+
+    /// The decision a loaded world's settings show for entry `e`, in hooks
+    /// that have no saved decisions (`docs/semantics.md`, "Saving and
+    /// loading"): a bit of `kind` that every collider under one side
+    /// carries as its only membership and every collider under the other
+    /// leaves out, both written by the crate (its mark says so), where the
+    /// bit is still free and exact; else the side whose colliders all carry
+    /// the hook bits the crate added (where both sides do, the side that
+    /// nothing else hooks). `None`: the world shows nothing, and the entry
+    /// is decided as in a new world.
+    fn found(
+        &self,
+        request: &Request<'_>,
+        facts: &mut Facts<'_>,
+        e: (Node, Node),
+        cx: &[ColliderHandle],
+        cy: &[ColliderHandle],
+        kind: Option<usize>,
+    ) -> Option<Decision> {
+        let colliders = request.colliders;
+        let marked = |c: ColliderHandle| colliders.get(c).map(|co| (co, Mark::on(co)));
+        if let Some(kind) = kind {
+            let groups = |co: &Collider| [co.collision_groups(), co.solver_groups()][kind];
+            let written = |c: ColliderHandle| {
+                marked(c).and_then(|(co, mark)| mark.wrote_groups(kind).then(|| groups(co)))
+            };
+            let sides = [(e.0, cx, e.1, cy), (e.1, cy, e.0, cx)];
+            for (carrying, carried, other, others) in sides {
+                let Some(&first) = carried.first() else {
+                    continue;
+                };
+                let Some(bit) = written(first).and_then(|g| single_bit(g.memberships)) else {
+                    continue;
+                };
+                let mask = Group::from_bits_retain(1 << bit);
+                let carries = carried
+                    .iter()
+                    .all(|&c| written(c).is_some_and(|g| g.memberships == mask));
+                let leaves_out = others
+                    .iter()
+                    .all(|&c| written(c).is_some_and(|g| !g.filter.intersects(mask)));
+                let agrees = |map: &HashMap<(Node, usize), (u32, usize)>, node| {
+                    map.get(&(node, kind)).is_none_or(|&(b, _)| b == bit)
+                };
+                if carries
+                    && leaves_out
+                    && agrees(&self.carrying, carrying)
+                    && agrees(&self.shared, other)
+                    && (facts.free)().contains(mask)
+                    && self.bits_exact(request, facts, e, carried, others, kind, bit)
+                {
+                    return Some(Decision::Bits {
+                        carrying,
+                        other,
+                        kind,
+                        bit,
+                    });
+                }
+            }
+        }
+        let hooked = |side: &[ColliderHandle]| {
+            !side.is_empty() && side.iter().all(|&c| marked(c).is_some_and(|(_, m)| m.hooked()))
+        };
+        let side = match (hooked(cx), hooked(cy)) {
+            (true, false) => e.0,
+            (false, true) => e.1,
+            (true, true) => {
+                let otherwise = |side: &[ColliderHandle]| {
+                    side.iter().all(|&c| self.hooks(request, facts, c))
+                };
+                match (otherwise(cx), otherwise(cy)) {
+                    (true, false) => e.1,
+                    (false, true) => e.0,
+                    _ => return None,
+                }
+            }
+            (false, false) => return None,
+        };
+        Some(Decision::Hooked { side })
     }
 
     /// Whether bit `bit` of `kind`, carried by `carried` and left out by
@@ -611,6 +699,11 @@ impl Decisions {
         plan.solver = narrow(plan.solver, membership[1], excluded[1]);
         plan
     }
+}
+
+/// The one bit of `group`, if it has exactly one.
+fn single_bit(group: Group) -> Option<u32> {
+    (group.bits().count_ones() == 1).then(|| group.bits().trailing_zeros())
 }
 
 /// `Some(dynamic)` if collider `c` may carry or leave out an entry's bit:

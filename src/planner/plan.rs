@@ -140,6 +140,11 @@ pub(crate) struct Request<'a> {
     /// `NoResponse` is then left to Rapier's groups (`docs/semantics.md`,
     /// "Soft bodies").
     pub(crate) soft_bodies: bool,
+    /// The world was loaded with the crate's writes but without the
+    /// decisions they rest on: entries not yet decided are decided as the
+    /// colliders' settings and marks show (`docs/semantics.md`, "Saving
+    /// and loading").
+    pub(crate) loaded: bool,
 }
 
 impl Request<'_> {

@@ -77,7 +77,7 @@ pub fn run_of(data: &[u8], locked: bool) -> Run {
                 ),
                 3 => Edit::AddBody(byte(next())),
                 4 => Edit::Bracket(1 + byte(next()) % 3),
-                5 => Edit::Reload,
+                5 => Edit::Reload(byte(next()) % 2 == 0),
                 6 => Edit::AddSoft(position(next()), 0.5 + byte(next()) as f32 / 128.0),
                 7 => Edit::CutSoft(byte(next())),
                 8 => Edit::TearSoft(byte(next())),

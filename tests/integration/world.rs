@@ -56,9 +56,11 @@ pub enum Edit {
     /// Several Rapier steps between one `prepare` and one `after_step`
     /// (what bevy_rapier does with substeps).
     Bracket(usize),
-    /// The world and its rule set saved together and loaded back into a
-    /// fresh world and fresh hooks (with `serde`), without any extra call.
-    Reload,
+    /// The world saved and loaded back into a fresh world and fresh hooks
+    /// (with `serde`), without any extra call: with its rule set (`true`),
+    /// or alone, its rules given again as code gives them (the rule set
+    /// without what its hooks wrote and decided).
+    Reload(bool),
     /// A small soft body at a point: its root body and surface join the
     /// bodies and colliders the edits name.
     AddSoft(f32, f32),
@@ -717,14 +719,21 @@ impl Run {
                 self.check();
                 self.replay_events();
             }
-            Edit::Reload => {
-                // The world and its rule set saved together, as a game saves
-                // (no extra call), and loaded into a fresh world and fresh
-                // hooks, which go on from there (`docs/semantics.md`,
-                // "Saving and loading").
+            Edit::Reload(_with_rule_set) => {
+                // The world saved, as a game saves (no extra call), and
+                // loaded into a fresh world and fresh hooks, which go on from
+                // there (`docs/semantics.md`, "Saving and loading"): with its
+                // rule set, or alone with the rules given again by code.
                 #[cfg(feature = "serde")]
                 {
-                    let saved = serde_json::to_string(&(&self.world, self.hooks.rules()))
+                    let mut rules =
+                        serde_json::to_value(self.hooks.rules()).expect("a rule set saves");
+                    if !_with_rule_set {
+                        let fields = rules.as_object_mut().expect("a rule set is a map");
+                        fields.remove("writes");
+                        fields.remove("decisions");
+                    }
+                    let saved = serde_json::to_string(&(&self.world, rules))
                         .expect("a world and its rule set save");
                     let (world, rules): (PhysicsWorld, super::rules::CollisionRuleSet) =
                         serde_json::from_str(&saved).expect("a save loads");

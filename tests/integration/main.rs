@@ -74,6 +74,8 @@ mod determinism;
 mod edges;
 #[cfg(all(feature = "dim3", feature = "serde"))]
 mod saving;
+#[cfg(all(feature = "dim3", feature = "serde"))]
+mod snapshots;
 #[cfg(feature = "dim3")]
 mod soak;
 #[cfg(feature = "dim3")]

@@ -548,10 +548,10 @@ impl RuleHooks {
     }
 
     /// Gives every collider the crate wrote to its project's own settings
-    /// back, as if the rules had never reached it; the next step writes
-    /// them again. Call it before saving a world with serde: a world saved
-    /// with the crate's settings in it would, once loaded, have them read
-    /// as the project's own.
+    /// back, as if the rules had never reached it (and takes its mark
+    /// away); the next step writes them again. No save needs it (a world
+    /// saved as it is reloads exactly, `docs/semantics.md`, "Saving and
+    /// loading"), except one meant for plain Rapier, without the hooks.
     ///
     /// ```
     /// use rapier3d::prelude::*;
@@ -578,6 +578,68 @@ impl RuleHooks {
         }
         self.planned.written = HandleMap::default();
         self.queued.replan = Some(PlanCause::ProjectSettings);
+    }
+
+    /// Starts over on a world put in place of the one these hooks stepped,
+    /// such as a save loaded into the running game: forgets what the hooks
+    /// learned of the old world (what they wrote, their plan and its
+    /// decisions, live pairs, pair overrides and manifold settings, the
+    /// soft bodies they followed) and keeps the rules and what code set
+    /// (the policy, a calculator, a pair-created callback, the project's
+    /// hooks, the planner, the step length, rule events and their handler).
+    /// The next step reads the loaded world as fresh hooks given the same
+    /// rules would, so it goes on as the run it was saved from
+    /// (`docs/semantics.md`, "Saving and loading").
+    ///
+    /// ```
+    /// # #[cfg(feature = "serde")] {
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed());
+    /// world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+    /// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 2.0, 0.0)));
+    /// world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific(ghost, ground, CollisionRule::NoResponse);
+    /// hooks.step(&mut world);
+    /// let quicksave = serde_json::to_string(&world).expect("saved");
+    /// for _ in 0..30 {
+    ///     hooks.step(&mut world);
+    /// }
+    /// // Quickload: the saved world in place of the running one.
+    /// world = serde_json::from_str(&quicksave).expect("loaded");
+    /// hooks.world_replaced();
+    /// for _ in 0..120 {
+    ///     hooks.step(&mut world);
+    /// }
+    /// assert!(world.bodies[ghost].translation().y < -1.0, "the rule still holds");
+    /// # }
+    /// ```
+    pub fn world_replaced(&mut self) {
+        let old = std::mem::take(self);
+        let Deciders {
+            mut rules,
+            policy,
+            calculator,
+            on_created,
+            user,
+        } = old.decide;
+        rules.writes = HandleMap::default();
+        rules.decisions.clear();
+        self.decide = Deciders {
+            rules,
+            policy,
+            calculator,
+            on_created,
+            user,
+        };
+        self.planned.enabled = old.planned.enabled;
+        self.planned.exhaustive = old.planned.exhaustive;
+        self.boundary.dt = old.boundary.dt;
+        self.soft.copy_to_pieces(old.soft.copies_to_pieces());
+        self.recording = old.recording.map(|r| Box::new(r.started_over()));
     }
 
     /// Removes the project's hooks and gives them back.

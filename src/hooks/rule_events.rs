@@ -136,6 +136,19 @@ pub(super) struct Recording {
     reached: HashSet<ColliderHandle>,
 }
 
+impl Recording {
+    /// The recording of hooks that start over on another world: the
+    /// handler and the events not yet drained stay; the live pairs are the
+    /// new world's, told as started after its first step.
+    pub(super) fn started_over(self) -> Recording {
+        Recording {
+            events: self.events,
+            handler: self.handler,
+            ..Recording::default()
+        }
+    }
+}
+
 impl RuleHooks {
     /// Starts (or stops) recording what changes for live pairs after each
     /// step, for [`drain_rule_events`](Self::drain_rule_events). Off by

@@ -40,6 +40,17 @@ pub(super) struct SoftBodies {
     copy_to_pieces: bool,
 }
 
+impl SoftBodies {
+    /// Whether pieces get a copy of their source's rules.
+    pub(super) fn copies_to_pieces(&self) -> bool {
+        self.copy_to_pieces
+    }
+
+    pub(super) fn copy_to_pieces(&mut self, copy: bool) {
+        self.copy_to_pieces = copy;
+    }
+}
+
 /// Rapier's copy of a cut soft body's collider, waiting for its record
 /// (see [`RuleHooks::settle_pieces`]).
 #[derive(Debug, Clone)]
@@ -183,7 +194,7 @@ impl RuleHooks {
     /// assert!(!hooks.rules().shares_rules(roots[0], roots[1]));
     /// ```
     pub fn set_pieces_copy_rules(&mut self, copy: bool) {
-        self.soft.copy_to_pieces = copy;
+        self.soft.copy_to_pieces(copy);
     }
 
     /// [`follow_soft_bodies`](Self::follow_soft_bodies) where the world

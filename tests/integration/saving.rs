@@ -440,6 +440,10 @@ fn ruled_pile() -> (PhysicsWorld, CollisionRuleSet) {
         );
         let body = world.insert_body(RigidBodyBuilder::dynamic().translation(at));
         let mut collider = ColliderBuilder::cuboid(0.5, 0.5, 0.5);
+        if i == 7 || i == 12 {
+            // The project's own hooks change these boxes' contacts.
+            collider = collider.active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
+        }
         if i % 5 == 0 {
             // The project's own layers: in layer 1, colliding with all.
             collider = collider.collision_groups(InteractionGroups::new(
@@ -492,6 +496,25 @@ fn ruled_pile() -> (PhysicsWorld, CollisionRuleSet) {
     (world, rules)
 }
 
+/// The project's own hooks over the pile: the boxes that ask for it slide
+/// on their contacts (friction 0.1).
+struct Slippery;
+
+impl PhysicsHooks for Slippery {
+    fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {
+        if let Some(manifold) = context.rigid_mut() {
+            *manifold.friction = 0.1;
+        }
+    }
+}
+
+/// Hooks over the pile's rules, with the project's own hooks.
+fn pile_hooks(rules: CollisionRuleSet) -> RuleHooks {
+    let mut hooks = RuleHooks::new(rules);
+    hooks.set_user_hooks(Slippery);
+    hooks
+}
+
 /// Every body's pose, bit for bit.
 fn pose_bits(world: &PhysicsWorld) -> Vec<u32> {
     world
@@ -518,7 +541,7 @@ fn a_world_saved_mid_run_with_its_rules_steps_bit_for_bit_without_any_extra_call
         .flat_map(|at| [(at, true), (at, false)]);
     for (save_at, with_rule_set) in ways {
         let (mut world, rules) = ruled_pile();
-        let mut hooks = RuleHooks::new(rules);
+        let mut hooks = pile_hooks(rules);
         for _ in 0..save_at {
             hooks.step(&mut world);
         }
@@ -545,7 +568,7 @@ fn a_world_saved_mid_run_with_its_rules_steps_bit_for_bit_without_any_extra_call
         } else {
             ruled_pile().1
         };
-        let mut loaded_hooks = RuleHooks::new(loaded_rules);
+        let mut loaded_hooks = pile_hooks(loaded_rules);
         let how = if with_rule_set {
             "with its rule set"
         } else {
@@ -607,6 +630,11 @@ fn a_world_saved_mid_run_with_its_rules_steps_bit_for_bit_without_any_extra_call
             .filter(|(groups, _, _)| groups.memberships == Group::GROUP_1)
             .count();
         assert_eq!(layered, 4, "the project's layered boxes, loaded {how}");
+        let hooked = settings(&loaded_world)
+            .iter()
+            .filter(|(_, _, hooks)| *hooks == ActiveHooks::MODIFY_SOLVER_CONTACTS)
+            .count();
+        assert_eq!(hooked, 2, "the project's hooked boxes, loaded {how}");
         assert_eq!(loaded_hooks.stats().loaded_writes_given_back, 0);
     }
     Ok(())

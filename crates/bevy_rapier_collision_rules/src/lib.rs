@@ -111,7 +111,7 @@ pub use table::{ContextRuleTable, RuleTable};
 /// everything [`CollisionRules`] and its [`RuleHooks`] take and give.
 pub use collision_rules::{
     CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
-    GroupTable, ManifoldUpdate, Node, OneWay, OneWayKind, PairCreated, Problem, Reach,
+    GroupTable, ManifoldUpdate, Node, OneWay, OneWayKind, PairCreated, PlanCause, Problem, Reach,
     RecalculationPolicy, RuleChange, RuleColor, RuleError, RuleEvent, RuleEventHandler, RuleHooks,
     RulePalette, Stage, StepStats, Until, WorldRef,
 };

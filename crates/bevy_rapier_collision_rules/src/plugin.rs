@@ -4,7 +4,7 @@ use bevy::ecs::intern::Interned;
 use bevy::ecs::schedule::ScheduleLabel;
 use bevy::prelude::*;
 use bevy_rapier::plugin::PhysicsSet;
-use bevy_rapier::plugin::context::RapierContextSimulation;
+use bevy_rapier::plugin::context::{RapierContextColliders, RapierContextSimulation};
 use bevy_rapier::prelude::{
     ActiveCollisionTypes, ActiveHooks, CollisionGroups, RapierRigidBodyHandle, SolverGroups,
 };
@@ -170,7 +170,8 @@ impl Plugin for CollisionRulesPlugin {
         // does not run every frame, is noted as it happens.
         app.add_observer(note_rules_removed)
             .add_observer(note_settings_removed)
-            .add_observer(note_table_dropped);
+            .add_observer(note_table_dropped)
+            .add_observer(note_world_replaced);
         if self.hierarchy {
             app.add_observer(note_moved).add_observer(note_unparented);
         }
@@ -235,6 +236,20 @@ impl Plugin for CollisionRulesPlugin {
 /// moves to another context).
 fn note_moved(event: On<Insert<(ChildOf, RapierRigidBodyHandle)>>, mut ledger: ResMut<Ledger>) {
     ledger.moved.push(event.entity);
+}
+
+/// A context whose colliders were inserted again after the hooks stepped
+/// it (a save restored by inserting bevy_rapier's components): its hooks
+/// start over on the restored world (`docs/bevy.md`, "Saving a context").
+fn note_world_replaced(
+    event: On<Insert<RapierContextColliders>>,
+    mut contexts: Query<&mut CollisionRules>,
+) {
+    if let Ok(mut rules) = contexts.get_mut(event.entity)
+        && rules.prepared()
+    {
+        rules.world_replaced();
+    }
 }
 
 /// A context that dropped its own table takes the shared one again.

@@ -64,6 +64,24 @@ impl CollisionRules {
         self.hooks.rules_mut()
     }
 
+    /// Starts the context's hooks over on a Rapier world put in place of
+    /// the one they stepped: a save restored into the context's
+    /// components. They keep the rules and what code set, and read the
+    /// restored world at the next step as fresh hooks would
+    /// ([`RuleHooks::world_replaced`]). The plugin calls it when
+    /// bevy_rapier's `RapierContextColliders` is inserted again on a
+    /// context it has stepped; a restore that moves the saved sets into
+    /// the live components calls it itself (`docs/bevy.md`, "Saving a
+    /// context").
+    pub fn world_replaced(&mut self) {
+        self.hooks.world_replaced();
+    }
+
+    /// Whether the hooks have prepared a step of this context.
+    pub(crate) fn prepared(&self) -> bool {
+        self.colliders_at != 0
+    }
+
     /// Whether `colliders` is this context's collider set as last prepared.
     pub(crate) fn owns(&self, colliders: &ColliderSet) -> bool {
         self.colliders_at == std::ptr::from_ref(colliders) as usize

@@ -27,6 +27,8 @@ mod outcomes;
 mod project;
 mod queries;
 mod rule_events;
+#[cfg(feature = "serde")]
+mod saving;
 mod scene;
 mod soft;
 mod stepping;

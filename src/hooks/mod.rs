@@ -204,6 +204,9 @@ struct Boundary {
     witness: Option<(PairKey, CollisionRule)>,
     /// Whether stepping without the hooks was reported (once).
     reported_unhooked: bool,
+    /// Whether a world put in place without `world_replaced` was reported
+    /// (once).
+    reported_foreign_marks: bool,
     /// How long a step is, for rules given for a time.
     dt: Real,
 }
@@ -231,6 +234,9 @@ struct Queued {
     /// Colliders whose groups the last plan changed. Rapier drops and finds
     /// their pairs again, so their table entries outlive one absence.
     regrouped: HashSet<ColliderHandle>,
+    /// Watched colliders whose crate's mark is not the one written (see
+    /// `RuleHooks::give_marks_back`).
+    unmarked: Vec<ColliderHandle>,
     /// Colliders configured or changed before this step: after it, their
     /// pairs are looked up in Rapier's graph (a pair Rapier made without
     /// asking the hook gets its rule; one it dropped is forgotten).
@@ -255,8 +261,9 @@ struct Planned {
     /// Colliders given the contact-modification flag for `ManifoldUpdate::Never`.
     modifying: HashSet<ColliderHandle>,
     /// The colliders of a loaded world whose mark the hooks read at their
-    /// first step (see `RuleHooks::adopt_marks`), until that step's plan.
-    loaded: Vec<ColliderHandle>,
+    /// first step (see `RuleHooks::adopt_marks`), with the settings they
+    /// held, until that step's plan.
+    loaded: Vec<(ColliderHandle, Settings)>,
 }
 
 impl std::fmt::Debug for RuleHooks {
@@ -299,6 +306,7 @@ impl RuleHooks {
                 census: Census::default(),
                 witness: None,
                 reported_unhooked: false,
+                reported_foreign_marks: false,
                 dt: IntegrationParameters::default().dt,
             },
             queued: Queued {
@@ -311,6 +319,7 @@ impl RuleHooks {
                 replan: Some(PlanCause::FirstStep),
                 regrouped: HashSet::new(),
                 touched: Vec::new(),
+                unmarked: Vec::new(),
             },
             planned: Planned {
                 enabled: true,
@@ -584,12 +593,16 @@ impl RuleHooks {
     /// such as a save loaded into the running game: forgets what the hooks
     /// learned of the old world (what they wrote, their plan and its
     /// decisions, live pairs, pair overrides and manifold settings, the
-    /// soft bodies they followed) and keeps the rules and what code set
-    /// (the policy, a calculator, a pair-created callback, the project's
-    /// hooks, the planner, the step length, rule events and their handler).
-    /// The next step reads the loaded world as fresh hooks given the same
-    /// rules would, so it goes on as the run it was saved from
-    /// (`docs/semantics.md`, "Saving and loading").
+    /// soft bodies they followed, the objects it removed) and keeps the
+    /// rules and what code set (the policy, a calculator, a pair-created
+    /// callback, the project's hooks, the planner, the step length, rule
+    /// events and their handler). The next step reads the loaded world as
+    /// fresh hooks given the same rules would, so it goes on as the run it
+    /// was saved from (`docs/semantics.md`, "Saving and loading"). The
+    /// rules are kept as they are now: rules the old world's events took
+    /// away since the save (objects removed, ends that came) are given
+    /// again by code, or come with the rule set saved beside the world (put
+    /// in place before or after this call).
     ///
     /// ```
     /// # #[cfg(feature = "serde")] {
@@ -626,8 +639,14 @@ impl RuleHooks {
             on_created,
             user,
         } = old.decide;
-        rules.writes = HandleMap::default();
-        rules.decisions.clear();
+        // The set's copy of the writes is the hooks' own unless a loaded
+        // set was put in its place, whose copy is the loaded world's.
+        let mirrored = rules
+            .writes
+            .iter()
+            .map(|(h, w)| (h, *w))
+            .eq(old.planned.written.iter().map(|(h, w)| (h, *w)));
+        rules.start_over(!mirrored);
         self.decide = Deciders {
             rules,
             policy,

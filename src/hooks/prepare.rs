@@ -130,6 +130,9 @@ impl RuleHooks {
         if !self.planned.loaded.is_empty() {
             self.report_loaded();
         }
+        if !self.queued.unmarked.is_empty() {
+            self.give_marks_back(colliders);
+        }
         self.recalculate_changed(bodies, colliders, under, changed.everything);
         for c in std::mem::take(&mut self.queued.wake_colliders) {
             self.queued
@@ -269,6 +272,10 @@ impl RuleHooks {
         }
         if !look.project_changed.is_empty() {
             self.queued.replan.get_or_insert(PlanCause::ProjectSettings);
+        }
+        self.queued.unmarked = look.unmarked;
+        if look.foreign_marks {
+            self.report_foreign_marks();
         }
         // A project setting can change a pair's rule (the kinematic entry
         // gives way to wider types): those colliders' pairs are recalculated.

@@ -10,7 +10,7 @@ use super::super::rapier::prelude::*;
 
 use super::super::Node;
 use super::super::model::{HandleMap, dynamic_body};
-use super::super::world::Settings;
+use super::super::world::{Mark, Settings};
 
 /// What the hooks remember of a watched collider.
 #[derive(Clone, Copy, Debug)]
@@ -20,6 +20,10 @@ struct Known {
     /// What the crate last wrote to it, if it differs from the project's
     /// settings: the look compares, to notice the project's changes.
     wrote: Option<Settings>,
+    /// The crate's mark it carries with what the crate wrote
+    /// (`world/mark.rs`): the look compares, to give back a mark the
+    /// project's own events setting erased.
+    crate_mark: Mark,
     /// An edit touched it: the next look asks whether the rules still reach it.
     marked: bool,
 }
@@ -67,6 +71,13 @@ pub(crate) struct Look {
     /// Watched colliders whose settings differ from what the crate wrote:
     /// the project changed them through Rapier.
     pub(crate) project_changed: Vec<ColliderHandle>,
+    /// Watched colliders whose mark is not the one the crate wrote: the
+    /// project set their events (which takes the mark), or a world was put
+    /// in place without `world_replaced`.
+    pub(crate) unmarked: Vec<ColliderHandle>,
+    /// Some watched collider carries another of the crate's marks than the
+    /// one it carried.
+    pub(crate) foreign_marks: bool,
 }
 
 impl Roster {
@@ -107,6 +118,9 @@ impl Roster {
             body,
             dynamic: dynamic_body(bodies, body),
             wrote: None,
+            // What it carries when first watched (a loaded world's mark, a
+            // cut piece's copy of its source's) until the crate writes it.
+            crate_mark: colliders.get(collider).map_or(Mark::default(), Mark::on),
             marked: false,
         };
         // A watched collider in a reused slot stays in the list: the next
@@ -138,11 +152,12 @@ impl Roster {
         true
     }
 
-    /// Records what the crate wrote to a watched collider (`None`: the
-    /// project's own settings).
-    pub(crate) fn wrote(&mut self, collider: ColliderHandle, wrote: Option<Settings>) {
+    /// Records what the crate wrote to a watched collider and the mark it
+    /// carries with it (`None`: the project's own settings).
+    pub(crate) fn wrote(&mut self, collider: ColliderHandle, wrote: Option<(Settings, Mark)>) {
         if let Some(known) = self.colliders.get_mut(collider) {
-            known.wrote = wrote;
+            known.wrote = wrote.map(|(settings, _)| settings);
+            known.crate_mark = wrote.map_or(Mark::default(), |(_, mark)| mark);
         }
     }
 
@@ -247,6 +262,15 @@ impl Roster {
                 .is_some_and(|wrote| Settings::of(collider) != wrote)
             {
                 look.project_changed.push(handle);
+            }
+            let mark = Mark::on(collider);
+            if mark != known.crate_mark {
+                look.unmarked.push(handle);
+                // Another of the crate's marks than the one it carried: the
+                // collider holds another run's writes.
+                if mark.is_marked() {
+                    look.foreign_marks = true;
+                }
             }
             let body = collider.parent();
             // A watched body's type was read by the body loop above: its

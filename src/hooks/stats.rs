@@ -141,9 +141,20 @@ pub struct StepStats {
     /// hooks".
     pub stepped_without_hooks: bool,
     /// At the hooks' first step: colliders of a loaded world that carried
-    /// the writes of rules that no rule given now reaches, given their
-    /// project's settings back (one warning is logged): the world then
-    /// steps as the rules given now say, not as the run it was saved from
-    /// (`docs/semantics.md`, "Saving and loading").
+    /// the crate's writes of the run it was saved from and on which the
+    /// rules now write nothing: they have their project's settings back.
+    /// With [`loaded_writes_changed`](Self::loaded_writes_changed), what
+    /// parts the world from that run at once: other rules, edits made
+    /// since loading, or decisions the world alone does not show (one
+    /// warning is logged; `docs/semantics.md`, "Saving and loading").
     pub loaded_writes_given_back: usize,
+    /// At the hooks' first step: colliders of a loaded world that carried
+    /// the crate's writes of the run it was saved from and on which the
+    /// rules now write otherwise.
+    pub loaded_writes_changed: usize,
+    /// Colliders the hooks wrote were seen carrying what the crate wrote in
+    /// another run: a world was put in place of theirs without
+    /// [`RuleHooks::world_replaced`](super::RuleHooks::world_replaced) (one
+    /// warning is logged).
+    pub foreign_marks: bool,
 }

@@ -203,12 +203,13 @@ impl RuleHooks {
         }
         // The collider is the project's again once the crate adds nothing.
         let written = (target != own).then_some(Written { own, wrote: target });
-        self.keep_written(handle, written);
-        self.planned.roster.wrote(handle, written.map(|w| w.wrote));
         // The collider carries the mark of what is the crate's, which a
         // world saved by any means keeps (`world/mark.rs`).
+        let mark = Mark::of_written(written.as_ref());
+        self.keep_written(handle, written);
+        self.planned.roster.wrote(handle, written.map(|w| (w.wrote, mark)));
         let events = current.active_events();
-        let marked = Mark::of_written(written.as_ref()).in_events(events);
+        let marked = mark.in_events(events);
         if target == now {
             if marked != events {
                 colliders[handle].set_active_events(marked);
@@ -297,34 +298,80 @@ impl RuleHooks {
             }
             if let Some(written) = Mark::on(collider).written(Settings::of(collider)) {
                 self.keep_written(handle, Some(written));
-                self.planned.loaded.push(handle);
+                self.planned.loaded.push((handle, written.wrote));
             }
         }
         if !self.planned.loaded.is_empty() {
-            let loaded = self.planned.loaded.iter().copied();
+            let loaded = self.planned.loaded.iter().map(|&(h, _)| h);
             self.queued.candidates.extend(loaded);
             self.queued.replan.get_or_insert(PlanCause::FirstStep);
         }
     }
 
-    /// After the first step's plan: the loaded colliders that no rule given
-    /// now reaches have their project's settings back. Said once, for the
-    /// world now parts from the run it was saved from.
+    /// Gives back the crate's mark to watched colliders that lost it (the
+    /// project set their events through Rapier, which takes the whole
+    /// field), so that a world saved later still tells the crate's writes
+    /// (`world/mark.rs`).
+    pub(super) fn give_marks_back(&mut self, colliders: &mut ColliderSet) {
+        for handle in std::mem::take(&mut self.queued.unmarked) {
+            let expected = Mark::of_written(self.planned.written.get(handle));
+            let Some(collider) = colliders.get(handle) else {
+                continue;
+            };
+            if Mark::on(collider) != expected {
+                let events = collider.active_events();
+                colliders[handle].set_active_events(expected.in_events(events));
+            }
+        }
+    }
+
+    /// Watched colliders carry another run's marks: a world
+    /// was put in place of the one these hooks stepped without
+    /// `world_replaced`, and its crate's writes would be read as the
+    /// project's settings. Said once.
+    #[cold]
+    pub(super) fn report_foreign_marks(&mut self) {
+        self.stats.foreign_marks = true;
+        if std::mem::replace(&mut self.boundary.reported_foreign_marks, true) {
+            return;
+        }
+        log::warn!(
+            "colliders these hooks wrote now carry what collision rules wrote in another run: a \
+             world was put in place of the one these hooks stepped. Call \
+             `hooks.world_replaced()` after putting a loaded world in place (in Bevy, \
+             `CollisionRules::world_replaced()` on the context), or those writes are read as \
+             the project's settings (docs/semantics.md, \"Saving and loading\")"
+        );
+    }
+
+    /// After the first step's plan: what the loaded colliders hold of the
+    /// run the world was saved from that the rules given now did not write
+    /// again. Those the rules write nothing on now have their project's
+    /// settings back; those the plan wrote otherwise part from that run
+    /// too. Each is
+    /// said once, since the world then steps otherwise than that run
+    /// (`docs/semantics.md`, "Saving and loading").
     pub(super) fn report_loaded(&mut self) {
         let loaded = std::mem::take(&mut self.planned.loaded);
-        let given_back = loaded
-            .iter()
-            .filter(|&&h| self.planned.written.get(h).is_none())
-            .count();
+        let (mut given_back, mut changed) = (0, 0);
+        for (handle, found) in loaded {
+            match self.planned.written.get(handle) {
+                None => given_back += 1,
+                Some(written) if written.wrote != found => changed += 1,
+                Some(_) => {}
+            }
+        }
         self.stats.loaded_writes_given_back = given_back;
-        if given_back > 0 {
+        self.stats.loaded_writes_changed = changed;
+        if given_back + changed > 0 {
             log::warn!(
                 "{given_back} colliders of this world carry settings that collision rules wrote \
-                 in the run it was saved from, and no rule given now reaches them: they have \
-                 their project's settings back, so the world steps as the rules given now say, \
-                 not as the run it was saved from. To go on exactly, load the rule set saved \
-                 with the world, or give the same rules before the first step \
-                 (docs/semantics.md, \"Saving and loading\")"
+                 in the run it was saved from on which the rules now write nothing (they have \
+                 their project's settings back), and {changed} on which they write otherwise: \
+                 the rules given now, or edits made since loading, differ from that run's, or \
+                 how that run decided them cannot be read from the world alone. Where that is \
+                 not meant, load the rule set saved with the world, or give the same rules \
+                 before the first step (docs/semantics.md, \"Saving and loading\")"
             );
         }
     }

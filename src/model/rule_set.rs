@@ -364,3 +364,19 @@ impl CollisionRuleSet {
         self.records.live().count()
     }
 }
+
+/// A rule set whose hooks start over on another world.
+impl CollisionRuleSet {
+    /// Forgets what belongs to the world these rules were stepped with:
+    /// the objects it removed (which the new world may hold again), and,
+    /// unless `saved` (a set loaded with the new world, which carries its
+    /// hooks' writes and decisions), the copy of what the hooks wrote and
+    /// decided there (`docs/semantics.md`, "Saving and loading").
+    pub(crate) fn start_over(&mut self, saved: bool) {
+        self.removed = Tombstones::default();
+        if !saved {
+            self.writes = HandleMap::default();
+            self.decisions.clear();
+        }
+    }
+}

@@ -394,41 +394,161 @@ impl Decisions {
                 });
             }
         }
-        for Undone {
-            entry: (x, y),
-            owner_is_first,
-            kind,
-            under: (cx, cy),
-        } in undone
-        {
-            let found = if request.loaded {
-                self.found(request, facts, (x, y), &cx, &cy, kind)
-            } else {
-                None
-            };
-            let bits = found.or_else(|| {
-                kind.and_then(|kind| self.bits_for(request, facts, (x, y), &cx, &cy, kind))
-            });
-            let decision = bits.unwrap_or_else(|| {
-                // The owner's side on a tie.
-                let (owner, owner_side, other, other_side) = if owner_is_first {
-                    (x, &cx, y, &cy)
-                } else {
-                    (y, &cy, x, &cx)
-                };
-                let hooked = |c: ColliderHandle| self.hooks(request, facts, c);
-                let pairs = request.pairs_of;
-                let side = if side_cost(request, other_side, hooked, pairs) < side_cost(request, owner_side, hooked, pairs) {
-                    other
-                } else {
-                    owner
-                };
-                Decision::Hooked { side }
-            });
+        let undone = if request.loaded {
+            self.decide_as_found(request, facts, undone, &mut changed)
+        } else {
+            undone
+        };
+        for entry in undone {
+            let (x, y) = entry.entry;
+            let decision = self.decide_new(request, facts, &entry);
             self.make((x, y), decision);
             changed.push((x, y));
         }
         changed
+    }
+
+    /// How an entry with no decision is decided in a new world: a bit of
+    /// its own where that is exact, else the cheaper side hooked (the
+    /// owner's side on a tie).
+    fn decide_new(&self, request: &Request<'_>, facts: &mut Facts<'_>, entry: &Undone) -> Decision {
+        let Undone {
+            entry: (x, y),
+            owner_is_first,
+            kind,
+            under: (cx, cy),
+        } = entry;
+        let bits = kind.and_then(|kind| self.bits_for(request, facts, (*x, *y), cx, cy, kind));
+        bits.unwrap_or_else(|| {
+            let (owner, owner_side, other, other_side) = if *owner_is_first {
+                (*x, cx, *y, cy)
+            } else {
+                (*y, cy, *x, cx)
+            };
+            let hooked = |c: ColliderHandle| self.hooks(request, facts, c);
+            let pairs = request.pairs_of;
+            let side = if side_cost(request, other_side, hooked, pairs)
+                < side_cost(request, owner_side, hooked, pairs)
+            {
+                other
+            } else {
+                owner
+            };
+            Decision::Hooked { side }
+        })
+    }
+
+    /// In a world loaded without its saved decisions, decides `undone` as
+    /// the world's settings show (`docs/semantics.md`, "Saving and
+    /// loading") and returns the entries the world shows nothing of. An
+    /// entry both of whose sides the world shows hooked hooks the side
+    /// nothing else hooks, once the others are decided: its decision
+    /// depends on theirs, which the run that wrote the world made in its
+    /// own order.
+    fn decide_as_found(
+        &mut self,
+        request: &Request<'_>,
+        facts: &mut Facts<'_>,
+        undone: Vec<Undone>,
+        changed: &mut Vec<(Node, Node)>,
+    ) -> Vec<Undone> {
+        let mut unknown = Vec::new();
+        let mut both = Vec::new();
+        let mut unseen_bits = Vec::new();
+        for entry in undone {
+            let (x, y) = entry.entry;
+            let (cx, cy) = (&entry.under.0, &entry.under.1);
+            match self.found(request, facts, (x, y), cx, cy, entry.kind) {
+                Found::Decision(decision) => {
+                    self.make((x, y), decision);
+                    changed.push((x, y));
+                }
+                Found::BitsIfHookedElsewhere(decision) => unseen_bits.push((entry, decision)),
+                Found::BothHooked => both.push(entry),
+                Found::Nothing => unknown.push(entry),
+            }
+        }
+        loop {
+            let before = both.len();
+            if before == 0 || self.resolve_hooked_sides(request, facts, &mut both, changed) {
+                if unseen_bits.is_empty() {
+                    break;
+                }
+                // No more both-hooked entries can be told apart: the bits
+                // whose carriers the world shows hooked are decided, which
+                // may tell the rest.
+                for (entry, decision) in std::mem::take(&mut unseen_bits) {
+                    let Decision::Bits {
+                        carrying, other, ..
+                    } = decision
+                    else {
+                        continue;
+                    };
+                    let (carried, others) = if carrying == entry.entry.0 {
+                        (&entry.under.0, &entry.under.1)
+                    } else {
+                        (&entry.under.1, &entry.under.0)
+                    };
+                    // A side the world shows hooked that nothing else hooks
+                    // is hooked by this entry.
+                    let unexplained = |side: &[ColliderHandle]| {
+                        side.iter().any(|&c| {
+                            let shown = request.colliders.get(c).is_some_and(|co| Mark::on(co).hooked());
+                            shown && !self.hooks(request, facts, c)
+                        })
+                    };
+                    let decision = if unexplained(carried) {
+                        Decision::Hooked { side: carrying }
+                    } else if unexplained(others) {
+                        Decision::Hooked { side: other }
+                    } else {
+                        decision
+                    };
+                    self.make(entry.entry, decision);
+                    changed.push(entry.entry);
+                }
+            }
+        }
+        unknown.extend(both);
+        unknown
+    }
+
+    /// Decides the entries of `both` (both sides hooked in a loaded world)
+    /// whose one side nothing else hooks; `true` when none could be.
+    fn resolve_hooked_sides(
+        &mut self,
+        request: &Request<'_>,
+        facts: &mut Facts<'_>,
+        both: &mut Vec<Undone>,
+        changed: &mut Vec<(Node, Node)>,
+    ) -> bool {
+        let before = both.len();
+        let mut waiting = Vec::new();
+        for entry in std::mem::take(both) {
+            let (x, y) = entry.entry;
+            let otherwise = |side: &[ColliderHandle]| {
+                side.iter().all(|&c| self.hooks(request, facts, c))
+            };
+            let side = match (otherwise(&entry.under.0), otherwise(&entry.under.1)) {
+                (true, false) => Some(y),
+                (false, true) => Some(x),
+                // Hooked either way: the new world's choice.
+                (true, true) => Some(match self.decide_new(request, facts, &entry) {
+                    Decision::Hooked { side } => side,
+                    Decision::Bits { .. } => x,
+                }),
+                (false, false) => None,
+            };
+            match side {
+                Some(side) => {
+                    self.make((x, y), Decision::Hooked { side });
+                    changed.push((x, y));
+                }
+                None => waiting.push(entry),
+            }
+        }
+        *both = waiting;
+        both.len() == before
     }
 
     /// A `Bits` decision for entry `e`, where it is exact and a bit is
@@ -494,15 +614,15 @@ impl Decisions {
             })
     }
 
-    /// The decision a loaded world's settings show for entry `e`, in hooks
-    /// that have no saved decisions (`docs/semantics.md`, "Saving and
-    /// loading"): a bit of `kind` that every collider under one side
-    /// carries as its only membership and every collider under the other
-    /// leaves out, both written by the crate (its mark says so), where the
+    /// What a loaded world's settings show of entry `e`, in hooks that
+    /// have no saved decisions (`docs/semantics.md`, "Saving and
+    /// loading"): a bit of `kind` that every collider under one side leaves
+    /// out of its filter, as the crate wrote it, and that every collider
+    /// under the other carries as its only membership or does not show
+    /// because it is hooked (a hooked collider keeps every bit), where the
     /// bit is still free and exact; else the side whose colliders all carry
-    /// the hook bits the crate added (where both sides do, the side that
-    /// nothing else hooks). `None`: the world shows nothing, and the entry
-    /// is decided as in a new world.
+    /// the hook bits the crate added, or both sides hooked (decided once
+    /// the others are, see `decide_as_found`).
     fn found(
         &self,
         request: &Request<'_>,
@@ -511,67 +631,95 @@ impl Decisions {
         cx: &[ColliderHandle],
         cy: &[ColliderHandle],
         kind: Option<usize>,
-    ) -> Option<Decision> {
+    ) -> Found {
         let colliders = request.colliders;
-        let marked = |c: ColliderHandle| colliders.get(c).map(|co| (co, Mark::on(co)));
+        let hooked = |c: ColliderHandle| colliders.get(c).is_some_and(|co| Mark::on(co).hooked());
         if let Some(kind) = kind {
             let groups = |co: &Collider| [co.collision_groups(), co.solver_groups()][kind];
             let written = |c: ColliderHandle| {
-                marked(c).and_then(|(co, mark)| mark.wrote_groups(kind).then(|| groups(co)))
+                let co = colliders.get(c)?;
+                Mark::on(co).wrote_groups(kind).then(|| groups(co))
             };
             let sides = [(e.0, cx, e.1, cy), (e.1, cy, e.0, cx)];
             for (carrying, carried, other, others) in sides {
-                let Some(&first) = carried.first() else {
+                if carried.is_empty() || others.is_empty() {
                     continue;
-                };
-                let Some(bit) = written(first).and_then(|g| single_bit(g.memberships)) else {
+                }
+                // A hooked collider keeps every bit and shows none; some
+                // other entry must hook it for this one to have a bit.
+                let mut hidden = false;
+                // The carried side's one membership bit, where it shows one.
+                let mut shown = None;
+                let carries = carried.iter().all(|&c| match written(c) {
+                    Some(g) => single_bit(g.memberships)
+                        .is_some_and(|b| *shown.get_or_insert(b) == b),
+                    None => {
+                        hidden = true;
+                        hooked(c)
+                    }
+                });
+                // The bits every collider under `other` that shows its
+                // filter leaves out.
+                let mut left_out = None;
+                let leaves_out = others.iter().all(|&c| match written(c) {
+                    Some(g) => {
+                        left_out = Some(left_out.unwrap_or(Group::ALL) & !g.filter);
+                        true
+                    }
+                    None => {
+                        hidden = true;
+                        hooked(c)
+                    }
+                });
+                if !(carries && leaves_out) {
                     continue;
+                }
+                let bits_of = |group: Group| -> Vec<u32> {
+                    (0..32u32)
+                        .filter(|&b| group.contains(Group::from_bits_retain(1 << b)))
+                        .collect()
                 };
-                let mask = Group::from_bits_retain(1 << bit);
-                let carries = carried
-                    .iter()
-                    .all(|&c| written(c).is_some_and(|g| g.memberships == mask));
-                let leaves_out = others
-                    .iter()
-                    .all(|&c| written(c).is_some_and(|g| !g.filter.intersects(mask)));
-                let agrees = |map: &HashMap<(Node, usize), (u32, usize)>, node| {
+                let candidates = match (shown, left_out) {
+                    (Some(bit), Some(left_out)) => bits_of(left_out)
+                        .into_iter()
+                        .filter(|&b| b == bit)
+                        .collect(),
+                    (Some(bit), None) => vec![bit],
+                    (None, Some(left_out)) => bits_of(left_out),
+                    (None, None) => Vec::new(),
+                };
+                let agrees = |map: &HashMap<(Node, usize), (u32, usize)>, node, bit| {
                     map.get(&(node, kind)).is_none_or(|&(b, _)| b == bit)
                 };
-                if carries
-                    && leaves_out
-                    && agrees(&self.carrying, carrying)
-                    && agrees(&self.shared, other)
-                    && (facts.free)().contains(mask)
-                    && self.bits_exact(request, facts, e, carried, others, kind, bit)
-                {
-                    return Some(Decision::Bits {
-                        carrying,
-                        other,
-                        kind,
-                        bit,
-                    });
+                for bit in candidates {
+                    let mask = Group::from_bits_retain(1 << bit);
+                    if agrees(&self.carrying, carrying, bit)
+                        && agrees(&self.shared, other, bit)
+                        && (facts.free)().contains(mask)
+                        && self.bits_exact(request, facts, e, carried, others, kind, bit)
+                    {
+                        let decision = Decision::Bits {
+                            carrying,
+                            other,
+                            kind,
+                            bit,
+                        };
+                        return if hidden {
+                            Found::BitsIfHookedElsewhere(decision)
+                        } else {
+                            Found::Decision(decision)
+                        };
+                    }
                 }
             }
         }
-        let hooked = |side: &[ColliderHandle]| {
-            !side.is_empty() && side.iter().all(|&c| marked(c).is_some_and(|(_, m)| m.hooked()))
-        };
-        let side = match (hooked(cx), hooked(cy)) {
-            (true, false) => e.0,
-            (false, true) => e.1,
-            (true, true) => {
-                let otherwise = |side: &[ColliderHandle]| {
-                    side.iter().all(|&c| self.hooks(request, facts, c))
-                };
-                match (otherwise(cx), otherwise(cy)) {
-                    (true, false) => e.1,
-                    (false, true) => e.0,
-                    _ => return None,
-                }
-            }
-            (false, false) => return None,
-        };
-        Some(Decision::Hooked { side })
+        let all_hooked = |side: &[ColliderHandle]| !side.is_empty() && side.iter().all(|&c| hooked(c));
+        match (all_hooked(cx), all_hooked(cy)) {
+            (true, false) => Found::Decision(Decision::Hooked { side: e.0 }),
+            (false, true) => Found::Decision(Decision::Hooked { side: e.1 }),
+            (true, true) => Found::BothHooked,
+            (false, false) => Found::Nothing,
+        }
     }
 
     /// Whether bit `bit` of `kind`, carried by `carried` and left out by
@@ -699,6 +847,20 @@ impl Decisions {
         plan.solver = narrow(plan.solver, membership[1], excluded[1]);
         plan
     }
+}
+
+/// What a loaded world shows of an entry's decision (see
+/// [`Decisions::found`]).
+enum Found {
+    Decision(Decision),
+    /// A `Bits` decision whose carrying side's colliders are hooked in the
+    /// world, which shows no bit: the bit where another entry hooks that
+    /// side, else that side hooked by this entry.
+    BitsIfHookedElsewhere(Decision),
+    /// Both sides' colliders carry the crate's hook bits.
+    BothHooked,
+    /// Nothing: decided as in a new world.
+    Nothing,
 }
 
 /// The one bit of `group`, if it has exactly one.

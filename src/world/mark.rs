@@ -109,7 +109,9 @@ impl Mark {
         if now.types.contains(types) {
             own.types -= types;
         }
-        Some(Written { own, wrote: now })
+        // The project changed every setting the crate wrote: none is the
+        // crate's any more.
+        (own != now).then_some(Written { own, wrote: now })
     }
 
     /// Whether the crate wrote the groups of `kind` (0: collision, 1:
@@ -200,8 +202,7 @@ mod tests {
             hooks: ActiveHooks::FILTER_CONTACT_PAIRS,
             ..wrote
         };
-        let read = mark.written(now).map(|w| w.own);
-        assert_eq!(read, Some(now), "every setting changed since is the project's");
+        assert_eq!(mark.written(now), None, "every setting changed since is the project's");
     }
 
     #[test]

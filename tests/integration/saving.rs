@@ -10,13 +10,11 @@ use rapier3d::prelude::*;
 
 use CollisionRule::*;
 
-/// `world` and `hooks`' rules saved (serde, the world with the project's
-/// own settings, not the crate's: the README's way) and loaded back.
+/// `world` and `hooks`' rules saved together, as they are, and loaded back.
 fn save_and_load(
     world: &mut PhysicsWorld,
     hooks: &mut RuleHooks,
 ) -> Result<(PhysicsWorld, CollisionRuleSet), Box<dyn std::error::Error>> {
-    hooks.restore_project_settings(&mut world.colliders);
     let saved = serde_json::to_string(&(&*world, hooks.rules()))?;
     Ok(serde_json::from_str(&saved)?)
 }
@@ -599,6 +597,13 @@ fn a_world_saved_mid_run_with_its_rules_steps_bit_for_bit_without_any_extra_call
         for step in 0..60 {
             hooks.step(&mut world);
             loaded_hooks.step(&mut loaded_world);
+            if step == 0 {
+                // The box removed before this step ends the bullet's
+                // entry, in both runs: its writes go (given back), and no
+                // other collider's change.
+                let changed = loaded_hooks.stats().loaded_writes_changed;
+                assert_eq!(changed, 0, "saved at step {save_at} {how}");
+            }
             let (a, b) = (pose_bits(&world), pose_bits(&loaded_world));
             let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
             assert!(
@@ -635,7 +640,6 @@ fn a_world_saved_mid_run_with_its_rules_steps_bit_for_bit_without_any_extra_call
             .filter(|(_, _, hooks)| *hooks == ActiveHooks::MODIFY_SOLVER_CONTACTS)
             .count();
         assert_eq!(hooked, 2, "the project's hooked boxes, loaded {how}");
-        assert_eq!(loaded_hooks.stats().loaded_writes_given_back, 0);
     }
     Ok(())
 }
@@ -711,6 +715,10 @@ fn a_quickload_into_running_hooks_goes_on_as_the_saved_run()
     let red = hooks.rules().group(red_box);
     assert!(red.is_some(), "the box is red");
     hooks.rules_mut().set_group(red_box, None);
+    // A box with a personal rule is removed: the rules forget it.
+    let (no_pair_box, _) = running.bodies.iter().nth(4).expect("a box");
+    assert_eq!(hooks.rules().personal(no_pair_box), NoPair);
+    running.remove_body(no_pair_box);
     for _ in 0..40 {
         hooks.step(&mut running);
     }
@@ -718,9 +726,22 @@ fn a_quickload_into_running_hooks_goes_on_as_the_saved_run()
     hooks.rules_mut().set_personal(extra, Defer);
     hooks.rules_mut().set_group(red_box, red);
     hooks.world_replaced();
+    // The loaded world holds the removed box again; its rule is given
+    // again by code (the running rules forgot it with the box).
+    hooks.rules_mut().set_personal(no_pair_box, NoPair);
+    assert_eq!(
+        hooks.rules().personal(no_pair_box),
+        NoPair,
+        "the rule is taken again"
+    );
     for step in 0..60 {
         hooks.step(&mut running);
         twin_hooks.step(&mut twin);
+        if step == 0 {
+            let stats = hooks.stats();
+            let parted = (stats.loaded_writes_given_back, stats.loaded_writes_changed);
+            assert_eq!(parted, (0, 0), "the quickload's first step");
+        }
         let (a, b) = (pose_bits(&running), pose_bits(&twin));
         let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
         assert_eq!(
@@ -728,6 +749,75 @@ fn a_quickload_into_running_hooks_goes_on_as_the_saved_run()
             "{differ} pose values differ {step} steps after the quickload"
         );
     }
-    assert_eq!(hooks.stats().loaded_writes_given_back, 0);
+    Ok(())
+}
+
+/// The project sets its colliders' events through Rapier mid-run, which
+/// takes the crate's mark with the whole field: the hooks give the mark
+/// back at the next step, so the world saved alone still reloads exactly,
+/// and the project's event flags stay.
+#[test]
+fn a_mark_the_project_erased_is_given_back() -> Result<(), Box<dyn std::error::Error>> {
+    let (mut world, rules) = ruled_pile();
+    let mut hooks = pile_hooks(rules);
+    for _ in 0..10 {
+        hooks.step(&mut world);
+    }
+    let handles: Vec<ColliderHandle> = world.colliders.iter().map(|(h, _)| h).collect();
+    for handle in handles {
+        world.colliders[handle].set_active_events(ActiveEvents::COLLISION_EVENTS);
+    }
+    hooks.step(&mut world);
+    let saved = serde_json::to_string(&world)?;
+    let mut loaded: PhysicsWorld = serde_json::from_str(&saved)?;
+    let mut by_code = pile_hooks(ruled_pile().1);
+    for step in 0..40 {
+        hooks.step(&mut world);
+        by_code.step(&mut loaded);
+        let (a, b) = (pose_bits(&world), pose_bits(&loaded));
+        let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+        assert_eq!(
+            differ, 0,
+            "{differ} pose values differ {step} steps after loading"
+        );
+    }
+    let events = loaded
+        .colliders
+        .iter()
+        .filter(|(_, c)| c.active_events().contains(ActiveEvents::COLLISION_EVENTS))
+        .count();
+    assert_eq!(
+        events,
+        loaded.colliders.len(),
+        "the project's event flags stay"
+    );
+    Ok(())
+}
+
+/// A world put in place of the running one without `world_replaced`: the
+/// hooks see their colliders carry another run's marks and say so.
+#[test]
+fn a_world_put_in_place_without_world_replaced_is_reported()
+-> Result<(), Box<dyn std::error::Error>> {
+    let (mut world, rules) = ruled_pile();
+    let mut hooks = RuleHooks::new(rules);
+    for _ in 0..30 {
+        hooks.step(&mut world);
+    }
+    let saved = serde_json::to_string(&world)?;
+    let (red_box, _) = world.bodies.iter().nth(2).expect("a box");
+    let red = hooks.rules().group(red_box);
+    hooks.rules_mut().set_group(red_box, None);
+    for _ in 0..10 {
+        hooks.step(&mut world);
+    }
+    assert!(!hooks.stats().foreign_marks);
+    world = serde_json::from_str(&saved)?;
+    hooks.rules_mut().set_group(red_box, red);
+    hooks.step(&mut world);
+    assert!(
+        hooks.stats().foreign_marks,
+        "the quickload without world_replaced is seen"
+    );
     Ok(())
 }

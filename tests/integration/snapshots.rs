@@ -504,3 +504,60 @@ fn layouts_of_entries_that_share_a_node_reload_byte_for_byte() {
         }
     }
 }
+
+/// Rapier's `restoring_into_a_live_pipeline`, as a quickload: the running
+/// world goes on past the save (a rule taken away and given back meanwhile),
+/// then the saved world is put in its place,
+/// keeping the live pipeline, and the same hooks go on after
+/// `world_replaced`; after every step it serializes to the same bytes as a
+/// twin run that never saved.
+#[test]
+fn a_quickload_into_the_live_pipeline_reloads_byte_for_byte() {
+    for (what, scene) in [
+        ("sleeping pile", sleeping_pile as Scene),
+        ("joints", joints_and_sensor),
+    ] {
+        let (mut world, rules) = scene();
+        let mut hooks = RuleHooks::new(rules);
+        let (mut twin, twin_rules) = scene();
+        let mut twin_hooks = RuleHooks::new(twin_rules);
+        for _ in 0..40 {
+            hooks.step(&mut world);
+            twin_hooks.step(&mut twin);
+        }
+        let saved = serde_json::to_string(&world).expect("the world saves");
+        // The pile's `NoPair` box loses its rule and gets it back before the
+        // quickload: what the hooks wrote meanwhile is not what the save
+        // holds.
+        let (ghost, _) = world.bodies.iter().nth(51).expect("the pile's NoPair box");
+        assert_eq!(hooks.rules().personal(ghost), CollisionRule::NoPair);
+        hooks.rules_mut().set_personal(ghost, CollisionRule::Defer);
+        for _ in 0..10 {
+            hooks.step(&mut world);
+        }
+        hooks.rules_mut().set_personal(ghost, CollisionRule::NoPair);
+        let mut restored: PhysicsWorld = serde_json::from_str(&saved).expect("the world loads");
+        restored.physics_pipeline = std::mem::take(&mut world.physics_pipeline);
+        restored.ccd_solver = std::mem::take(&mut world.ccd_solver);
+        let mut world = restored;
+        hooks.world_replaced();
+        for step in 0..20 {
+            hooks.step(&mut world);
+            twin_hooks.step(&mut twin);
+            let (want, got) = (parts(&twin), parts(&world));
+            let differing: Vec<_> = want
+                .iter()
+                .zip(&got)
+                .filter(|(a, b)| a.1 != b.1)
+                .map(|(a, _)| a.0)
+                .collect();
+            assert!(
+                differing.is_empty(),
+                "{what}: the quickload differs {} step(s) after it in {differing:?}; first moved \
+                 body: {}",
+                step + 1,
+                first_moved(&twin, &world)
+            );
+        }
+    }
+}

@@ -492,10 +492,8 @@ impl Decisions {
                     // A side the world shows hooked that nothing else hooks
                     // is hooked by this entry.
                     let unexplained = |side: &[ColliderHandle]| {
-                        side.iter().any(|&c| {
-                            let shown = request.colliders.get(c).is_some_and(|co| Mark::on(co).hooked());
-                            shown && !self.hooks(request, facts, c)
-                        })
+                        side.iter()
+                            .any(|&c| shows_hooked(request, c) && !self.hooks(request, facts, c))
                     };
                     let decision = if unexplained(carried) {
                         Decision::Hooked { side: carrying }
@@ -633,7 +631,7 @@ impl Decisions {
         kind: Option<usize>,
     ) -> Found {
         let colliders = request.colliders;
-        let hooked = |c: ColliderHandle| colliders.get(c).is_some_and(|co| Mark::on(co).hooked());
+        let hooked = |c: ColliderHandle| shows_hooked(request, c);
         if let Some(kind) = kind {
             let groups = |co: &Collider| [co.collision_groups(), co.solver_groups()][kind];
             let written = |c: ColliderHandle| {
@@ -861,6 +859,12 @@ enum Found {
     BothHooked,
     /// Nothing: decided as in a new world.
     Nothing,
+}
+
+/// Whether collider `c` of a loaded world carries the hook bits the crate
+/// added (its mark says so).
+fn shows_hooked(request: &Request<'_>, c: ColliderHandle) -> bool {
+    request.colliders.get(c).is_some_and(|co| Mark::on(co).hooked())
 }
 
 /// The one bit of `group`, if it has exactly one.

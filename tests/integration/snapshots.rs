@@ -55,6 +55,26 @@ fn first_moved(a: &PhysicsWorld, b: &PhysicsWorld) -> String {
 /// A scene: a world and its rules, built alike every time.
 type Scene = fn() -> (PhysicsWorld, CollisionRuleSet);
 
+/// Panics, naming the structures that differ and the first body that
+/// moved, unless `loaded` serializes to the same bytes as `uninterrupted`
+/// `step + 1` steps after loading.
+fn assert_same(uninterrupted: &PhysicsWorld, loaded: &PhysicsWorld, what: &str, step: usize) {
+    let (want, got) = (parts(uninterrupted), parts(loaded));
+    let differing: Vec<_> = want
+        .iter()
+        .zip(&got)
+        .filter(|(a, b)| a.1 != b.1)
+        .map(|(a, _)| a.0)
+        .collect();
+    assert!(
+        differing.is_empty(),
+        "{what}: the snapshot differs {} step(s) after loading in {differing:?}; first moved \
+         body: {}",
+        step + 1,
+        first_moved(uninterrupted, loaded)
+    );
+}
+
 /// An edit made before each step, in both runs alike: the step's index and
 /// the bodies spawned so far.
 type Edit = fn(&mut PhysicsWorld, &mut CollisionRuleSet, usize, &mut Vec<RigidBodyHandle>);
@@ -127,20 +147,7 @@ fn check_roundtrip(
                     "{what}, saved {how}: the first step parts from the saved run"
                 );
             }
-            let (want, got) = (parts(&world), parts(&loaded));
-            let differing: Vec<_> = want
-                .iter()
-                .zip(&got)
-                .filter(|(a, b)| a.1 != b.1)
-                .map(|(a, _)| a.0)
-                .collect();
-            assert!(
-                differing.is_empty(),
-                "{what}, saved {how}: the snapshot differs {} step(s) after loading in \
-                 {differing:?}; first moved body: {}",
-                step + 1,
-                first_moved(&world, &loaded)
-            );
+            assert_same(&world, &loaded, &format!("{what}, saved {how}"), step);
         }
     }
 }
@@ -544,20 +551,7 @@ fn a_quickload_into_the_live_pipeline_reloads_byte_for_byte() {
         for step in 0..20 {
             hooks.step(&mut world);
             twin_hooks.step(&mut twin);
-            let (want, got) = (parts(&twin), parts(&world));
-            let differing: Vec<_> = want
-                .iter()
-                .zip(&got)
-                .filter(|(a, b)| a.1 != b.1)
-                .map(|(a, _)| a.0)
-                .collect();
-            assert!(
-                differing.is_empty(),
-                "{what}: the quickload differs {} step(s) after it in {differing:?}; first moved \
-                 body: {}",
-                step + 1,
-                first_moved(&twin, &world)
-            );
+            assert_same(&twin, &world, &format!("{what}, quickloaded"), step);
         }
     }
 }

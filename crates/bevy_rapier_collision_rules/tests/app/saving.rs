@@ -47,17 +47,29 @@ fn save(sim: &mut Sim) -> Saved {
     }
 }
 
+/// The four components, loaded.
+fn load(
+    saved: &Saved,
+) -> (
+    RapierContextSimulation,
+    RapierContextColliders,
+    RapierRigidBodySet,
+    RapierContextJoints,
+) {
+    (
+        serde_json::from_str(&saved.simulation).expect("simulation loads"),
+        serde_json::from_str(&saved.colliders).expect("colliders load"),
+        serde_json::from_str(&saved.bodies).expect("bodies load"),
+        serde_json::from_str(&saved.joints).expect("joints load"),
+    )
+}
+
 /// The saved sets moved into the context's live components, which keep
 /// what bevy_rapier's serde leaves out (its entity maps and the transforms
 /// it last wrote: inserting the components again loses them, and
 /// bevy_rapier then moves every body to its Bevy transform).
 fn restore_in_place(sim: &mut Sim, saved: &Saved) {
-    let simulation: RapierContextSimulation =
-        serde_json::from_str(&saved.simulation).expect("simulation loads");
-    let colliders: RapierContextColliders =
-        serde_json::from_str(&saved.colliders).expect("colliders load");
-    let bodies: RapierRigidBodySet = serde_json::from_str(&saved.bodies).expect("bodies load");
-    let joints: RapierContextJoints = serde_json::from_str(&saved.joints).expect("joints load");
+    let (simulation, colliders, bodies, joints) = load(saved);
     let context = sim.context();
     let mut entity = sim.app.world_mut().entity_mut(context);
     {
@@ -89,17 +101,8 @@ fn restore_in_place(sim: &mut Sim, saved: &Saved) {
 /// The saved components inserted again, as bevy_rapier's own round trip
 /// does.
 fn restore_by_insert(sim: &mut Sim, saved: &Saved) {
-    let simulation: RapierContextSimulation =
-        serde_json::from_str(&saved.simulation).expect("simulation loads");
-    let colliders: RapierContextColliders =
-        serde_json::from_str(&saved.colliders).expect("colliders load");
-    let bodies: RapierRigidBodySet = serde_json::from_str(&saved.bodies).expect("bodies load");
-    let joints: RapierContextJoints = serde_json::from_str(&saved.joints).expect("joints load");
     let context = sim.context();
-    sim.app
-        .world_mut()
-        .entity_mut(context)
-        .insert((simulation, colliders, bodies, joints));
+    sim.app.world_mut().entity_mut(context).insert(load(saved));
 }
 
 /// A pile of twelve boxes on a floor: two groups that do not respond to

@@ -107,6 +107,8 @@ impl Seen {
 /// linked to it (`docs/semantics.md`, "Soft bodies").
 fn relink_proxies(rules: &mut CollisionRuleSet, body: &SoftBody, old: RigidBodyHandle) {
     let root = body.root_body();
+    // The root is in the world: the set names no newer body of its slot.
+    rules.forget_unborn(Node::Body(root));
     if rules.parent(root) == Some(old) {
         rules.remove_parent(root);
     }
@@ -306,6 +308,7 @@ impl RuleHooks {
             for (_, cluster) in body.live_clusters() {
                 let proxy = cluster.proxy();
                 if proxy != root && rules.parent(proxy).is_none() {
+                    rules.forget_unborn(Node::Body(proxy));
                     // A proxy is a leaf of Rapier's making: no cycle goes
                     // through it.
                     let _ = rules.set_parent(proxy, root);

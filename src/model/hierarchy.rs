@@ -27,6 +27,11 @@ impl Hierarchy {
         self.parents.is_superseded(body)
     }
 
+    /// The newer body the map holds in `body`'s slot, if any.
+    pub(crate) fn newer_than(&self, body: RigidBodyHandle) -> Option<RigidBodyHandle> {
+        self.parents.newer_than(body)
+    }
+
     pub(crate) fn set_parent(
         &mut self,
         child: RigidBodyHandle,

@@ -156,6 +156,16 @@ impl<H: Handle, V> HandleMap<H, V> {
         matches!(self.slots.get(index as usize), Some(Some((stored, _))) if *stored > generation)
     }
 
+    /// The handle of a newer generation than `handle` that the slot holds,
+    /// if any.
+    pub(crate) fn newer_than(&self, handle: H) -> Option<H> {
+        let (index, generation) = handle.raw_parts();
+        match self.slots.get(index as usize) {
+            Some(Some((stored, _))) if *stored > generation => Some(H::from_raw(index, *stored)),
+            _ => None,
+        }
+    }
+
     /// Stores `value` for `handle`. Returns what the slot held before, of
     /// this generation or an older one (whose object Rapier has removed), so
     /// that the caller can let go of it. The caller checks

@@ -31,6 +31,8 @@ impl CollisionRuleSet {
     /// the Bevy plugin does with each piece's components).
     pub(crate) fn give_piece(&mut self, source: RigidBodyHandle, piece: RigidBodyHandle, copy: bool, heir: Heir) -> bool {
         let (from, to) = (Node::Body(source), Node::Body(piece));
+        // `piece` is in the world: the set names no newer body of its slot.
+        self.forget_unborn(to);
         if self.is_removed(to) {
             return false;
         }
@@ -71,6 +73,33 @@ impl CollisionRuleSet {
         match self.specific_until(like.0, like.1) {
             Some(until) => self.set_specific_until(node, other, rule, until),
             None => self.set_specific(node, other, rule),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_piece_takes_its_rules_past_a_newer_handle_of_its_slot() {
+        // A set not saved with its world names generation 4 of slot 4,
+        // which Rapier has not handed out; the piece's root is generation 2.
+        let body = |index, generation| RigidBodyHandle::from_raw_parts(index, generation);
+        let (source, piece, unborn, child) = (body(3, 1), body(4, 2), body(4, 4), body(5, 0));
+        for linked in [false, true] {
+            let mut rules = CollisionRuleSet::default();
+            rules.set_personal(source, CollisionRule::NoResponse);
+            if linked {
+                rules.set_parent(unborn, child).expect("no cycle");
+            } else {
+                rules.set_personal(unborn, CollisionRule::NoPair);
+            }
+            assert!(rules.is_removed(Node::Body(piece)), "the unborn handle makes the piece dead");
+            assert!(rules.give_piece(source, piece, false, Heir::Piece));
+            assert_eq!(rules.personal(piece), CollisionRule::NoResponse, "linked: {linked}");
+            assert_eq!(rules.personal(unborn), CollisionRule::Defer, "linked: {linked}");
+            assert_eq!(rules.parent(unborn), None, "linked: {linked}");
         }
     }
 }

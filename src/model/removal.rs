@@ -63,6 +63,30 @@ impl CollisionRuleSet {
         }
     }
 
+    /// Forgets what the set holds of `live`'s slot at a newer generation.
+    /// The caller has `live` from the world, so a newer handle of its slot
+    /// names an object Rapier has not handed out yet: only a rule set not
+    /// saved with this world can hold one, and it must not make the live
+    /// object dead (`docs/semantics.md`, "Handles of removed objects").
+    /// Returns whether anything was forgotten.
+    pub(crate) fn forget_unborn(&mut self, live: Node) -> bool {
+        let unborn = match live {
+            Node::Collider(handle) => self.collider_records.newer_than(handle).map(Node::Collider),
+            Node::Body(handle) => self
+                .body_records
+                .newer_than(handle)
+                .or_else(|| self.hierarchy.newer_than(handle))
+                .map(Node::Body),
+        };
+        let Some(unborn) = unborn else {
+            return false;
+        };
+        self.remove_node(unborn);
+        // A body can be in both the records and the parent map.
+        self.forget_unborn(live);
+        true
+    }
+
     /// Forgets every node the rule set knows that is missing from the Rapier
     /// sets: bodies and colliders with rules, bodies in the parent map, and
     /// the subjects of specific entries. Returns how many were forgotten.

@@ -248,7 +248,6 @@ fn the_pieces_of_a_cut_or_a_tear_keep_the_soft_bodys_rules() {
 }
 
 /// The root body of `soft`'s soft body.
-#[cfg(feature = "dim2")]
 fn root_of(sim: &mut Sim, soft: Entity) -> bevy_rapier::rapier::prelude::RigidBodyHandle {
     let context = sim.context();
     let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
@@ -256,9 +255,13 @@ fn root_of(sim: &mut Sim, soft: Entity) -> bevy_rapier::rapier::prelude::RigidBo
 }
 
 /// What became of a bar torn in two and then cut across x = `x` (as
-/// [`split_bar`], over the floor with `NoPair` given as `given`, or over
-/// no floor), if the cut split it.
-#[cfg(feature = "dim2")]
+/// [`split_bar`], with `NoPair` given as `given` with the floor under it,
+/// or with the same floor 1 km below), if the cut split it. The floor is
+/// there in both, so that every collider has the same handle in both:
+/// Rapier visits pairs in the order of their handles, and the same scene
+/// numbered otherwise moves otherwise, rules or none (without the floor,
+/// this bar's lowest particle ends at -11.66 m after the frames, with the
+/// floor 1 km below at -11.41 m).
 struct TornThenCut {
     /// Whether the cut gave the bar's root to its piece.
     moved: bool,
@@ -266,16 +269,15 @@ struct TornThenCut {
     pieces: Vec<(Entity, f32, Vec<u32>)>,
 }
 
-#[cfg(feature = "dim2")]
 fn torn_then_cut(with_floor: bool, given: Given, x: f32) -> Option<TornThenCut> {
     let mut sim = Sim::new();
     let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
-    if with_floor {
-        let f = sim.spawn(floor());
-        give(&mut sim, bar_entity, f, NoPair, given);
-    } else if matches!(given, Given::Personal) {
-        sim.entity_mut(bar_entity).insert(PersonalRule(NoPair));
+    let f = sim.spawn(floor());
+    if !with_floor {
+        sim.entity_mut(f)
+            .insert(Transform::from_xyz(0.0, -1000.0, 0.0));
     }
+    give(&mut sim, bar_entity, f, NoPair, given);
     sim.run(1);
     let mut pieces = split(&mut sim, bar_entity, Split::Tear);
     sim.run(1);
@@ -309,12 +311,9 @@ fn torn_then_cut(with_floor: bool, given: Given, x: f32) -> Option<TornThenCut> 
 
 /// A bar torn in two, then cut across the half that keeps the entity, for
 /// several blades, lying 0.15 m inside the floor with `NoPair` given each
-/// way: every piece moves bit for bit as over no floor. Some cut gives the
+/// way: every piece moves bit for bit as with the floor 1 km below. Some cut gives the
 /// bar's root to its piece (rapier 0.36.1 in 2D), which takes the plugin's
 /// book along the path for a moved root (`docs/bevy.md`, "Soft bodies").
-/// In 3D the same scene is a known gap, not passed yet (`docs/bevy.md`,
-/// "Known gap: a torn bar cut again in 3D").
-#[cfg(feature = "dim2")]
 #[test]
 fn a_torn_bar_cut_again_keeps_its_rules_on_every_piece_whichever_root_moves() {
     let (mut moved, mut cuts) = (false, 0);
@@ -323,7 +322,7 @@ fn a_torn_bar_cut_again_keeps_its_rules_on_every_piece_whichever_root_moves() {
             let Some(over_floor) = torn_then_cut(true, given, x) else {
                 continue;
             };
-            let alone = torn_then_cut(false, given, x).expect("the same cut over no floor");
+            let alone = torn_then_cut(false, given, x).expect("the same cut with the floor away");
             cuts += 1;
             moved |= over_floor.moved;
             assert_eq!(
@@ -335,14 +334,19 @@ fn a_torn_bar_cut_again_keeps_its_rules_on_every_piece_whichever_root_moves() {
                 let (entity, low, bits) = piece;
                 assert!(
                     *bits == alone.2,
-                    "cut at x = {x}, {given:?}: piece {entity:?} (lowest particle at {low}, {} over no floor) moved otherwise than over no floor",
+                    "cut at x = {x}, {given:?}: piece {entity:?} (lowest particle at {low}, {} with the floor away) moved otherwise than with the floor away",
                     alone.1
                 );
             }
         }
     }
     assert!(cuts >= 2 * GIVENS.len(), "only {cuts} cuts of the torn bar");
-    assert!(moved, "no cut gave the bar's root to its piece");
+    // Rapier 0.36.1 moves the root in some cut in 2D, in none in 3D
+    // (`CUT_MOVES_ROOT` in the core's tests).
+    assert!(
+        moved || cfg!(feature = "dim3"),
+        "no cut gave the bar's root to its piece"
+    );
 }
 
 /// A bar with `PersonalRule(NoPair)` 0.05 m over the floor, after a frame.

@@ -231,11 +231,17 @@ fn main() {
     println!(
         "scene        rules   plain ms/frame  ratio to plain (min, median, max over {repeats} repeats)"
     );
+    // `FRAME_ONLY=<scene>,<rules>` (for example `Level,None`): that row alone.
+    let only = std::env::var("FRAME_ONLY").ok();
     for scene in [Scene::PileAsleep, Scene::Level, Scene::PileAwake] {
         let with_controllers = (scene == Scene::Level).then_some(Rules::Controllers);
         for rules in [Rules::None, Rules::Groups]
             .into_iter()
             .chain(with_controllers)
+            .filter(|rules| {
+                only.as_ref()
+                    .is_none_or(|o| *o == format!("{scene:?},{rules:?}"))
+            })
         {
             let mut ratios = Vec::new();
             let mut plain_ms = Vec::new();

@@ -175,16 +175,17 @@ impl Plugin for CollisionRulesPlugin {
         if self.hierarchy {
             app.add_observer(note_moved).add_observer(note_unparented);
         }
-        let prepare = (
-            share_table,
-            follow_hierarchy,
-            follow_soft_bodies,
-            name_tear_pieces,
-            apply_rule_components,
-            notice_project_settings,
-            prepare_contexts,
-        )
-            .chain()
+        // The stages run in this order as one system, each with its own
+        // parameters and change ticks: Bevy's executor spends about as much
+        // on starting a system as an idle stage spends on its work
+        // (`docs/performance.md`, "The Bevy frame").
+        let prepare = share_table
+            .pipe(follow_hierarchy)
+            .pipe(follow_soft_bodies)
+            .pipe(name_tear_pieces)
+            .pipe(apply_rule_components)
+            .pipe(notice_project_settings)
+            .pipe(prepare_contexts)
             .in_set(RulesSystems::Prepare);
         app.add_systems(self.schedule, prepare);
         // Warns once if bevy_rapier does not step with the rules' hooks here.
@@ -196,8 +197,8 @@ impl Plugin for CollisionRulesPlugin {
         );
         app.add_systems(
             self.schedule,
-            (finish_contexts, drop_ended_entries)
-                .chain()
+            finish_contexts
+                .pipe(drop_ended_entries)
                 .in_set(RulesSystems::Finish),
         );
         if self.rule_events {
@@ -205,14 +206,14 @@ impl Plugin for CollisionRulesPlugin {
                 .add_systems(
                     self.schedule,
                     record_rule_events
-                        .before(prepare_contexts)
-                        .in_set(RulesSystems::Prepare),
+                        .after(PhysicsSet::SyncBackend)
+                        .before(RulesSystems::Prepare),
                 )
                 .add_systems(
                     self.schedule,
                     send_rule_events
-                        .after(finish_contexts)
-                        .in_set(RulesSystems::Finish),
+                        .after(RulesSystems::Finish)
+                        .before(PhysicsSet::Writeback),
                 );
         }
         // Character controllers that follow the rules decide what they may

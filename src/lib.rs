@@ -33,8 +33,8 @@ macro_rules! dimension {
         };
         pub use hooks::{
             CalculatorContext, FullPass, ManifoldUpdate, PairCreated, PlanCause, Reach,
-            RecalculationPolicy, RuleChange, RuleEvent, RuleEventHandler, RuleHooks, StepStats,
-            WorldRef,
+            RecalculationPolicy, RuleChange, RuleEvent, RuleEventHandler, RuleHooks, SplitPiece,
+            StepStats, WorldRef,
         };
         pub use model::{
             CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable, Node, OneWay, OneWayKind,

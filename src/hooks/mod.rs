@@ -56,6 +56,7 @@ pub use reach::Reach;
 #[cfg(feature = "debug-render")]
 pub(crate) use reach::PairReach;
 pub use rule_events::{RuleChange, RuleEvent, RuleEventHandler};
+pub use soft_bodies::SplitPiece;
 use roster::Roster;
 
 /// When live pairs are recalculated after the rules change.

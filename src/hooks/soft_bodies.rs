@@ -24,6 +24,16 @@ use super::super::model::{CollidersUnder, Heir};
 use super::super::world::Settings;
 use super::{PlanCause, RuleHooks};
 
+/// A piece of a cut or a tear that the hooks gave the rules of the soft
+/// body it came from (see [`RuleHooks::split_pieces`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SplitPiece {
+    /// The piece.
+    pub piece: SoftBodyHandle,
+    /// The soft body it came from.
+    pub source: SoftBodyHandle,
+}
+
 /// What the hooks know of the world's soft bodies.
 #[derive(Debug, Default)]
 pub(super) struct SoftBodies {
@@ -38,6 +48,8 @@ pub(super) struct SoftBodies {
     /// Pieces get a copy of their source's rules, not its record (see
     /// [`RuleHooks::set_pieces_copy_rules`]).
     copy_to_pieces: bool,
+    /// The pieces given their source's rules since the last step.
+    pieces: Vec<SplitPiece>,
 }
 
 impl SoftBodies {
@@ -48,6 +60,11 @@ impl SoftBodies {
 
     pub(super) fn copy_to_pieces(&mut self, copy: bool) {
         self.copy_to_pieces = copy;
+    }
+
+    /// A step ends: the pieces it followed are told.
+    pub(super) fn forget_pieces(&mut self) {
+        self.pieces.clear();
     }
 }
 
@@ -199,6 +216,36 @@ impl RuleHooks {
         self.soft.copy_to_pieces(copy);
     }
 
+    /// The pieces of cuts and tears that the hooks gave the rules of the
+    /// soft body they came from since the last step, in the order they
+    /// were followed: for a project that keeps rules of its own beside
+    /// each soft body (the Bevy plugin's book of each entity's components)
+    /// and must note what each piece was given. Read it after
+    /// [`follow_soft_bodies`](Self::follow_soft_bodies), before the step;
+    /// the step empties it.
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks, SplitPiece};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let bar = SoftBodyBuilder::cuboid(Vector::new(0.0, 2.0, 0.0), Vector::new(1.0, 0.25, 0.25), 6, 2, 2);
+    /// let bar = world.insert_soft_body(bar);
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_personal(world.soft_bodies[bar].root_body(), CollisionRule::NoResponse);
+    /// hooks.step(&mut world);
+    /// let blade = [Vector::new(0.1, -10.0, -10.0), Vector::new(0.1, 20.0, -10.0), Vector::new(0.1, -10.0, 20.0)];
+    /// let cut = world.cut_soft_body(bar, &blade).expect("the blade crosses the bar");
+    /// hooks.follow_soft_bodies(&world.soft_bodies, &world.bodies);
+    /// let piece = cut.bodies().find(|&p| p != bar).expect("a piece");
+    /// assert_eq!(hooks.split_pieces(), [SplitPiece { piece, source: bar }]);
+    /// hooks.step(&mut world);
+    /// assert!(hooks.split_pieces().is_empty());
+    /// ```
+    pub fn split_pieces(&self) -> &[SplitPiece] {
+        &self.soft.pieces
+    }
+
     /// [`follow_soft_bodies`](Self::follow_soft_bodies) where the world
     /// holds, or held, soft bodies.
     fn follow_soft_body_set(&mut self, soft_bodies: &SoftBodySet, bodies: &RigidBodySet) {
@@ -285,6 +332,7 @@ impl RuleHooks {
                     self.soft.known.insert(source, Seen::of(from));
                 }
                 self.soft.known.insert(handle, Seen::of(body));
+                self.soft.pieces.push(SplitPiece { piece: handle, source });
                 self.copy_settings_across_cut(&held.meshes, &sides);
                 false
             });

@@ -31,6 +31,7 @@ impl RuleHooks {
         if !std::mem::take(&mut self.boundary.prepared) {
             missing("prepare", "before the step");
         }
+        self.soft.forget_pieces();
         if !self.queued.to_wake.is_empty() {
             missing("wake_edited", "before the step, after prepare");
         }

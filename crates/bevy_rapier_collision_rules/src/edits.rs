@@ -3,7 +3,7 @@
 //! difference is edited, so that `OnChange` recalculates just the pairs an
 //! edit can affect (`docs/bevy.md`).
 
-use crate::collision_rules::{CollisionRule, CollisionRuleSet, Node};
+use crate::collision_rules::{CollisionRule, CollisionRuleSet, Node, SplitPiece};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_rapier::plugin::context::RapierRigidBodySet;
@@ -184,6 +184,7 @@ pub(crate) fn apply_rule_components(
 ) {
     let ledger = &mut *ledger;
     follow_tears(ledger, &objects, &softs);
+    note_split_pieces(ledger, &objects, &contexts);
     let mut dirty: Vec<Entity> = edited.iter().collect();
     dirty.extend(
         softs
@@ -192,6 +193,15 @@ pub(crate) fn apply_rule_components(
     );
     dirty.append(&mut ledger.removed);
     dirty.extend(ledger.waiting.drain());
+    // Pieces that got their components (or were despawned) since their
+    // tear: their rules become what the components say.
+    ledger.pieces.retain(|&piece| {
+        let waits = objects.awaits_its_tear_message(piece);
+        if !waits {
+            dirty.push(piece);
+        }
+        waits
+    });
     // A named entity that moved (a new object, another context, despawned):
     // the entries about it are set again.
     for (&target, named) in &ledger.named {
@@ -220,7 +230,11 @@ pub(crate) fn apply_rule_components(
 /// in between, and it steps with its rules from the frame of the tear
 /// (`docs/bevy.md`, "Soft bodies").
 fn follow_tears(ledger: &mut Ledger, objects: &Objects, softs: &Query<Entity, RuledSoftBodies>) {
-    for soft in softs {
+    // An entity that lost its last rule component in the frame of the tear
+    // is followed too: its rules are taken off its new root, not the
+    // piece's.
+    let lost: Vec<Entity> = ledger.removed.clone();
+    for soft in softs.iter().chain(lost) {
         let Some(applied) = ledger.applied.get(&soft) else {
             continue;
         };
@@ -234,6 +248,7 @@ fn follow_tears(ledger: &mut Ledger, objects: &Objects, softs: &Query<Entity, Ru
                 ledger.name(tear.piece, entry.target, at);
             }
             ledger.note_applied(tear.piece, held);
+            ledger.pieces.insert(tear.piece);
         }
         if let Some(applied) = ledger.applied.get_mut(&soft) {
             applied.place = tear.now;
@@ -267,6 +282,72 @@ fn follow_tears(ledger: &mut Ledger, objects: &Objects, softs: &Query<Entity, Ru
         }
         if let Some(named) = ledger.named.get_mut(&target) {
             named.at = Some(tear.now);
+        }
+    }
+}
+
+/// Every piece the rule sets gave their source's rules this frame
+/// ([`RuleHooks::split_pieces`](crate::collision_rules::RuleHooks::split_pieces))
+/// holds in the book what its source's entity held, at the piece's root,
+/// and so does every entry that names the source's entity about the
+/// piece, until the piece has its components (bevy_rapier copies them
+/// from the source's entity at the next writeback): then the piece is
+/// applied again, so that a component the source lost in between is
+/// taken off the piece too (`docs/bevy.md`, "Soft bodies").
+fn note_split_pieces(
+    ledger: &mut Ledger,
+    objects: &Objects,
+    contexts: &Query<&mut CollisionRules>,
+) {
+    for (context, set) in &objects.sets {
+        let Ok(rules) = contexts.get(context) else {
+            continue;
+        };
+        for &SplitPiece { piece, source } in rules.hooks().split_pieces() {
+            let (Some(entity), Some(from), Some(body)) = (
+                set.soft_body_entity(piece),
+                set.soft_body_entity(source),
+                set.soft_bodies.get(piece),
+            ) else {
+                continue;
+            };
+            if entity == from || ledger.applied.contains_key(&entity) {
+                continue;
+            }
+            let place = (context, Node::from(body.root_body()));
+            if let Some(held) = ledger.applied.get(&from).cloned() {
+                for entry in &held.specific {
+                    let at = objects.place_of(entry.target).map(|(c, _)| (c, entry.node));
+                    ledger.name(entity, entry.target, at);
+                }
+                ledger.note_applied(entity, Applied { place, ..held });
+            }
+            let namers: Vec<Entity> = ledger
+                .named
+                .get(&from)
+                .map(|n| n.by.iter().copied().collect())
+                .unwrap_or_default();
+            for namer in namers {
+                let Some(applied) = ledger.applied.get_mut(&namer) else {
+                    continue;
+                };
+                let about: Vec<AppliedEntry> = applied
+                    .specific
+                    .iter()
+                    .filter(|e| e.target == from)
+                    .map(|e| AppliedEntry {
+                        target: entity,
+                        node: place.1,
+                        ..*e
+                    })
+                    .filter(|e| !applied.specific.contains(e))
+                    .collect();
+                if !about.is_empty() {
+                    applied.specific.extend(about);
+                    ledger.name(namer, entity, Some(place));
+                }
+            }
+            ledger.pieces.insert(entity);
         }
     }
 }

@@ -452,3 +452,65 @@ fn a_despawned_piece_leaves_no_rules_behind() {
         );
     }
 }
+
+/// A bar's rule with the floor removed in the frame the bar is cut or
+/// torn (or cut again after a tear, across several blades): bevy_rapier
+/// copies the bar's components onto the pieces after the removal, so no
+/// piece keeps the rule, also a piece that takes the bar's old root (which
+/// the plugin's book hands over before the piece has its components):
+/// every piece comes to rest on the floor.
+#[test]
+fn a_rule_removed_in_the_frame_of_a_split_stays_off_every_piece() {
+    let (mut moved, mut cases) = (0, 0);
+    let splits = [(None, Split::Cut, 0.1), (None, Split::Tear, 0.1)]
+        .into_iter()
+        .chain([-0.6, -0.4, -0.2, 0.2, 0.4, 0.6].map(|x| (Some(Split::Tear), Split::Cut, x)));
+    for (first, how, x) in splits {
+        for given in [
+            Given::Personal,
+            Given::SoftNamesFloor,
+            Given::FloorNamesSoft,
+        ] {
+            let mut sim = Sim::new();
+            let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
+            let f = sim.spawn(floor());
+            give(&mut sim, bar_entity, f, NoPair, given);
+            sim.run(1);
+            if let Some(first) = first {
+                // The pieces of the tear keep their own copy of the rule.
+                split(&mut sim, bar_entity, first);
+                sim.run(1);
+            }
+            let root = root_of(&mut sim, bar_entity);
+            let Some(pieces) = split_at(&mut sim, bar_entity, how, x) else {
+                continue;
+            };
+            cases += 1;
+            moved += usize::from(root_of(&mut sim, bar_entity) != root);
+            match given {
+                Given::Personal => sim.entity_mut(bar_entity).remove::<PersonalRule>(),
+                Given::SoftNamesFloor => sim.entity_mut(bar_entity).remove::<SpecificRules>(),
+                _ => sim.entity_mut(f).remove::<SpecificRules>(),
+            };
+            sim.run(FRAMES);
+            let case = format!("{first:?} then {how:?} at x = {x}, {given:?}");
+            for &piece in &pieces {
+                let piece_root = root_of(&mut sim, piece);
+                let personal = sim.rules().rules().personal(piece_root);
+                assert_eq!(personal, Defer, "{case}: piece {piece:?}'s personal rule");
+                let low = lowest(&mut sim, piece);
+                assert!(
+                    low > -1.0,
+                    "{case}: piece {piece:?} fell through the floor to {low}"
+                );
+            }
+        }
+    }
+    assert!(cases >= 2 * 3, "only {cases} splits");
+    // In 2D some cut of a torn bar gives its old root to the piece
+    // (rapier 0.36.1; `CUT_MOVES_ROOT` in the core's tests).
+    assert!(
+        moved > 0 || cfg!(feature = "dim3"),
+        "no split gave the bar's root to a piece"
+    );
+}

@@ -27,6 +27,7 @@ use super::{PlanCause, RuleHooks};
 /// A piece of a cut or a tear that the hooks gave the rules of the soft
 /// body it came from (see [`RuleHooks::split_pieces`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct SplitPiece {
     /// The piece.
     pub piece: SoftBodyHandle,
@@ -125,7 +126,7 @@ impl Seen {
 fn relink_proxies(rules: &mut CollisionRuleSet, body: &SoftBody, old: RigidBodyHandle) {
     let root = body.root_body();
     // The root is in the world: the set names no newer body of its slot.
-    rules.forget_unborn(Node::Body(root));
+    rules.forget_unborn(root);
     if rules.parent(root) == Some(old) {
         rules.remove_parent(root);
     }
@@ -218,7 +219,8 @@ impl RuleHooks {
 
     /// The pieces of cuts and tears that the hooks gave the rules of the
     /// soft body they came from since the last step, in the order they
-    /// were followed: for a project that keeps rules of its own beside
+    /// were followed (not a piece whose root kept rules of its own, a
+    /// cluster proxy given rules before the split): for a project that keeps rules of its own beside
     /// each soft body (the Bevy plugin's book of each entity's components)
     /// and must note what each piece was given. Read it after
     /// [`follow_soft_bodies`](Self::follow_soft_bodies), before the step;
@@ -238,7 +240,8 @@ impl RuleHooks {
     /// let cut = world.cut_soft_body(bar, &blade).expect("the blade crosses the bar");
     /// hooks.follow_soft_bodies(&world.soft_bodies, &world.bodies);
     /// let piece = cut.bodies().find(|&p| p != bar).expect("a piece");
-    /// assert_eq!(hooks.split_pieces(), [SplitPiece { piece, source: bar }]);
+    /// let split: Vec<_> = hooks.split_pieces().iter().map(|s: &SplitPiece| (s.piece, s.source)).collect();
+    /// assert_eq!(split, [(piece, bar)]);
     /// hooks.step(&mut world);
     /// assert!(hooks.split_pieces().is_empty());
     /// ```
@@ -318,10 +321,14 @@ impl RuleHooks {
                 // sides now that are not it take them, and the proxies the
                 // hooks linked to it on a side that no longer has it are
                 // linked to that side's root.
-                for side in from.into_iter().chain([body]) {
+                // Whether the piece holds its source's rules: it keeps the
+                // root that holds them, or its root takes them.
+                let mut took = true;
+                for (side, is_piece) in from.map(|f| (f, false)).into_iter().chain([(body, true)]) {
                     if side.root_body() != held.root {
                         relink_proxies(&mut self.decide.rules, side, held.root);
-                        self.decide.rules.give_piece(held.root, side.root_body(), self.soft.copy_to_pieces, Heir::Piece);
+                        let gave = self.decide.rules.give_piece(held.root, side.root_body(), self.soft.copy_to_pieces, Heir::Piece);
+                        took &= gave || !is_piece;
                     }
                 }
                 let sides: [CollidersUnder; 2] = [
@@ -332,7 +339,9 @@ impl RuleHooks {
                     self.soft.known.insert(source, Seen::of(from));
                 }
                 self.soft.known.insert(handle, Seen::of(body));
-                self.soft.pieces.push(SplitPiece { piece: handle, source });
+                if took {
+                    self.soft.pieces.push(SplitPiece { piece: handle, source });
+                }
                 self.copy_settings_across_cut(&held.meshes, &sides);
                 false
             });
@@ -356,7 +365,7 @@ impl RuleHooks {
             for (_, cluster) in body.live_clusters() {
                 let proxy = cluster.proxy();
                 if proxy != root && rules.parent(proxy).is_none() {
-                    rules.forget_unborn(Node::Body(proxy));
+                    rules.forget_unborn(proxy);
                     // A proxy is a leaf of Rapier's making: no cycle goes
                     // through it.
                     let _ = rules.set_parent(proxy, root);

@@ -22,8 +22,10 @@ impl CollisionRuleSet {
     /// it shares `source`'s record (personal rule, group, its specific
     /// entries, and later edits through either), every entry another node
     /// holds about `source` is held about `piece` too, and `piece` gets
-    /// `source`'s parent unless it has one. Returns whether anything was
-    /// given. A [`Heir::Piece`] that holds rules of its own keeps its record.
+    /// `source`'s parent unless it has one. A [`Heir::Piece`] that holds
+    /// rules of its own keeps its record. Returns whether `piece` took
+    /// `source`'s rules: false for a removed `piece` and for one that kept
+    /// its own record.
     ///
     /// With `copy`, `piece` gets a record of its own with a copy of
     /// `source`'s personal rule, group and specific entries instead of
@@ -32,11 +34,10 @@ impl CollisionRuleSet {
     pub(crate) fn give_piece(&mut self, source: RigidBodyHandle, piece: RigidBodyHandle, copy: bool, heir: Heir) -> bool {
         let (from, to) = (Node::Body(source), Node::Body(piece));
         // `piece` is in the world: the set names no newer body of its slot.
-        self.forget_unborn(to);
+        self.forget_unborn(piece);
         if self.is_removed(to) {
             return false;
         }
-        let mut given = false;
         let own = heir == Heir::Piece && self.record(to).is_some_and(|r| !r.is_empty());
         match self.record(from).filter(|r| !r.is_empty() && !own).cloned() {
             Some(record) if copy => {
@@ -46,12 +47,8 @@ impl CollisionRuleSet {
                 for (other, rule) in record.specific {
                     self.set_specific_keeping_end(to, other, rule, (from, other));
                 }
-                given = true;
             }
-            Some(_) => {
-                self.share_rules(from, to);
-                given = true;
-            }
+            Some(_) => self.share_rules(from, to),
             None => {}
         }
         if self.is_named(from) {
@@ -59,12 +56,12 @@ impl CollisionRuleSet {
             for (holder, rule) in holders {
                 self.set_specific_keeping_end(holder, to, rule, (holder, from));
             }
-            given = true;
         }
         if let Some(parent) = self.parent(source).filter(|_| self.parent(piece).is_none()) {
-            given |= self.set_parent(piece, parent).is_ok();
+            // A piece is a leaf of Rapier's making: no cycle goes through it.
+            let _ = self.set_parent(piece, parent);
         }
-        given
+        !own
     }
 
     /// `set_specific`, with the end the entry `like` has, if any: a piece's
@@ -100,6 +97,7 @@ mod tests {
             assert_eq!(rules.personal(piece), CollisionRule::NoResponse, "linked: {linked}");
             assert_eq!(rules.personal(unborn), CollisionRule::Defer, "linked: {linked}");
             assert_eq!(rules.parent(unborn), None, "linked: {linked}");
+            assert!(!rules.is_removed(Node::Body(unborn)), "Rapier may hand out the unborn handle later");
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Forgetting removed objects (`docs/semantics.md`, "Handles of removed objects"): their rules,
 //! the entries about them and their parent links.
 
-use super::super::rapier::prelude::{ColliderSet, RigidBodySet};
+use super::super::rapier::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 
 use super::super::{CollisionRuleSet, Node};
 
@@ -38,6 +38,15 @@ impl CollisionRuleSet {
         // edit through a handle is refused must not depend on which
         // objects the hooks happened to watch.
         let held = self.holds_rules_about(node);
+        self.forget_node(node);
+        if held {
+            self.removed.bury(node);
+        }
+    }
+
+    /// Forgets `node`'s rules, the entries about it and its parent links,
+    /// without remembering it as removed.
+    fn forget_node(&mut self, node: Node) {
         self.detach(node);
         if self.named.remove(&node).is_some() {
             // The nodes holding an entry about it change their pairs: logged,
@@ -58,33 +67,20 @@ impl CollisionRuleSet {
             }
             self.hierarchy.forget(body);
         }
-        if held {
-            self.removed.bury(node);
-        }
     }
 
     /// Forgets what the set holds of `live`'s slot at a newer generation.
-    /// The caller has `live` from the world, so a newer handle of its slot
-    /// names an object Rapier has not handed out yet: only a rule set not
-    /// saved with this world can hold one, and it must not make the live
-    /// object dead (`docs/semantics.md`, "Handles of removed objects").
-    /// Returns whether anything was forgotten.
-    pub(crate) fn forget_unborn(&mut self, live: Node) -> bool {
-        let unborn = match live {
-            Node::Collider(handle) => self.collider_records.newer_than(handle).map(Node::Collider),
-            Node::Body(handle) => self
-                .body_records
-                .newer_than(handle)
-                .or_else(|| self.hierarchy.newer_than(handle))
-                .map(Node::Body),
-        };
-        let Some(unborn) = unborn else {
-            return false;
-        };
-        self.remove_node(unborn);
+    /// The caller has the body `live` from the world, so a newer handle of
+    /// its slot names a body Rapier has not handed out yet: only a rule set
+    /// not saved with this world can hold one, and it must not make the
+    /// live body dead (`docs/semantics.md`, "Handles of removed objects").
+    /// The newer handle is not remembered as removed: Rapier may hand it
+    /// out later.
+    pub(crate) fn forget_unborn(&mut self, live: RigidBodyHandle) {
         // A body can be in both the records and the parent map.
-        self.forget_unborn(live);
-        true
+        while let Some(unborn) = self.body_records.newer_than(live).or_else(|| self.hierarchy.newer_than(live)) {
+            self.forget_node(Node::Body(unborn));
+        }
     }
 
     /// Forgets every node the rule set knows that is missing from the Rapier

@@ -194,14 +194,26 @@ pub(crate) fn apply_rule_components(
     dirty.append(&mut ledger.removed);
     dirty.extend(ledger.waiting.drain());
     // Pieces that got their components (or were despawned) since their
-    // tear: their rules become what the components say.
-    ledger.pieces.retain(|&piece| {
-        let waits = objects.awaits_its_tear_message(piece);
-        if !waits {
-            dirty.push(piece);
-        }
-        waits
-    });
+    // tear, and the entities naming them: their rules become what the
+    // components say (an entry about the source dropped in between is
+    // dropped about the piece too).
+    let ready: Vec<Entity> = ledger
+        .pieces
+        .iter()
+        .copied()
+        .filter(|&piece| !objects.awaits_its_tear_message(piece))
+        .collect();
+    for piece in ready {
+        ledger.pieces.remove(&piece);
+        dirty.push(piece);
+        dirty.extend(
+            ledger
+                .named
+                .get(&piece)
+                .into_iter()
+                .flat_map(|n| n.by.iter().copied()),
+        );
+    }
     // A named entity that moved (a new object, another context, despawned):
     // the entries about it are set again.
     for (&target, named) in &ledger.named {
@@ -303,7 +315,7 @@ fn note_split_pieces(
         let Ok(rules) = contexts.get(context) else {
             continue;
         };
-        for &SplitPiece { piece, source } in rules.hooks().split_pieces() {
+        for &SplitPiece { piece, source, .. } in rules.hooks().split_pieces() {
             let (Some(entity), Some(from), Some(body)) = (
                 set.soft_body_entity(piece),
                 set.soft_body_entity(source),

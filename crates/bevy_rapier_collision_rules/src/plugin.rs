@@ -195,12 +195,9 @@ impl Plugin for CollisionRulesPlugin {
                 .run_if(run_once)
                 .in_set(RulesSystems::Prepare),
         );
-        app.add_systems(
-            self.schedule,
-            finish_contexts
-                .pipe(drop_ended_entries)
-                .in_set(RulesSystems::Finish),
-        );
+        // After the step, as one system: the pairs taken in, ended entries
+        // dropped, and (with rule events) the messages sent.
+        let finish = finish_contexts.pipe(drop_ended_entries);
         if self.rule_events {
             app.add_message::<CollisionRuleEvent>()
                 .add_systems(
@@ -211,10 +208,10 @@ impl Plugin for CollisionRulesPlugin {
                 )
                 .add_systems(
                     self.schedule,
-                    send_rule_events
-                        .after(RulesSystems::Finish)
-                        .before(PhysicsSet::Writeback),
+                    finish.pipe(send_rule_events).in_set(RulesSystems::Finish),
                 );
+        } else {
+            app.add_systems(self.schedule, finish.in_set(RulesSystems::Finish));
         }
         // Character controllers that follow the rules decide what they may
         // touch right before bevy_rapier moves them (`docs/bevy.md`,

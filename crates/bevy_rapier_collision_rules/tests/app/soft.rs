@@ -466,11 +466,14 @@ fn a_rule_removed_in_the_frame_of_a_split_stays_off_every_piece() {
         .into_iter()
         .chain([-0.6, -0.4, -0.2, 0.2, 0.4, 0.6].map(|x| (Some(Split::Tear), Split::Cut, x)));
     for (first, how, x) in splits {
-        for given in [
-            Given::Personal,
-            Given::SoftNamesFloor,
-            Given::FloorNamesSoft,
-        ] {
+        // The floor's entry goes with its component, or alone.
+        let ways = [
+            (Given::Personal, false),
+            (Given::SoftNamesFloor, false),
+            (Given::FloorNamesSoft, false),
+            (Given::FloorNamesSoft, true),
+        ];
+        for (given, entry_alone) in ways {
             let mut sim = Sim::new();
             let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
             let f = sim.spawn(floor());
@@ -490,10 +493,13 @@ fn a_rule_removed_in_the_frame_of_a_split_stays_off_every_piece() {
             match given {
                 Given::Personal => sim.entity_mut(bar_entity).remove::<PersonalRule>(),
                 Given::SoftNamesFloor => sim.entity_mut(bar_entity).remove::<SpecificRules>(),
+                _ if entry_alone => sim.entity_mut(f).insert(SpecificRules::new()),
                 _ => sim.entity_mut(f).remove::<SpecificRules>(),
             };
             sim.run(FRAMES);
-            let case = format!("{first:?} then {how:?} at x = {x}, {given:?}");
+            let case = format!(
+                "{first:?} then {how:?} at x = {x}, {given:?} (entry alone: {entry_alone})"
+            );
             for &piece in &pieces {
                 let piece_root = root_of(&mut sim, piece);
                 let personal = sim.rules().rules().personal(piece_root);
@@ -506,7 +512,7 @@ fn a_rule_removed_in_the_frame_of_a_split_stays_off_every_piece() {
             }
         }
     }
-    assert!(cases >= 2 * 3, "only {cases} splits");
+    assert!(cases >= 2 * 4, "only {cases} splits");
     // In 2D some cut of a torn bar gives its old root to the piece
     // (rapier 0.36.1; `CUT_MOVES_ROOT` in the core's tests).
     assert!(

@@ -121,3 +121,26 @@ mod bounded {
         }
     }
 }
+
+/// Inputs the bounded property once failed on, replayed as they were found.
+#[cfg(test)]
+mod found {
+    /// In 2D with `serde`: a saved rule set corrupted to name generation 4
+    /// of the slot whose body Rapier had at generation 2, then a cut whose
+    /// piece took that body as its root: the piece lost its rules (the rule
+    /// set counted the live body as removed).
+    const UNBORN_GENERATION: &[u8] = &[
+        156, 0, 0, 0, 0, 0, 0, 1, 158, 0, 249, 0, 0, 0, 147, 0, 0, 0, 124, 0, 51, 216, 1, 37,
+        42, 28, 91, 190, 1, 38, 61, 44, 18, 21, 44, 49, 201, 0, 0, 48, 0, 0, 104, 21, 0, 1, 50,
+        0, 68, 31, 0, 80, 0, 0, 0, 38, 23, 0, 111, 0, 7, 0, 21, 3, 0, 60, 0, 36, 185, 0, 56,
+        21, 43, 0, 39, 0, 168, 158, 124, 4, 199, 0, 0, 0, 189, 31, 1, 1, 51, 42, 1, 133, 0, 0,
+        56, 0, 41, 0, 87, 74, 0, 61, 230, 0, 34, 141, 0, 158, 9, 199, 0, 0, 0, 239, 14, 5, 43,
+        0, 155, 177, 0, 1, 194, 0, 185, 182, 0, 0, 32, 143, 41, 1, 197, 76, 144, 0, 0, 0, 161,
+        1, 39, 0, 87, 0, 0, 0, 65, 0, 0, 151, 247,
+    ];
+
+    #[test]
+    fn a_save_naming_a_generation_rapier_has_not_handed_out() {
+        super::drive(UNBORN_GENERATION);
+    }
+}

@@ -255,12 +255,7 @@ fn follow_tears(ledger: &mut Ledger, objects: &Objects, softs: &Query<Entity, Ru
         };
         let held = applied.clone();
         if !ledger.applied.contains_key(&tear.piece) {
-            for entry in &held.specific {
-                let at = objects.place_of(entry.target).map(|(c, _)| (c, entry.node));
-                ledger.name(tear.piece, entry.target, at);
-            }
-            ledger.note_applied(tear.piece, held);
-            ledger.pieces.insert(tear.piece);
+            hand_to_piece(ledger, objects, tear.piece, held);
         }
         if let Some(applied) = ledger.applied.get_mut(&soft) {
             applied.place = tear.now;
@@ -328,11 +323,7 @@ fn note_split_pieces(
             }
             let place = (context, Node::from(body.root_body()));
             if let Some(held) = ledger.applied.get(&from).cloned() {
-                for entry in &held.specific {
-                    let at = objects.place_of(entry.target).map(|(c, _)| (c, entry.node));
-                    ledger.name(entity, entry.target, at);
-                }
-                ledger.note_applied(entity, Applied { place, ..held });
+                hand_to_piece(ledger, objects, entity, Applied { place, ..held });
             }
             let namers: Vec<Entity> = ledger
                 .named
@@ -362,6 +353,17 @@ fn note_split_pieces(
             ledger.pieces.insert(entity);
         }
     }
+}
+
+/// Notes in the book that `piece` holds `held` (its source's rules, at its
+/// root), naming what they name, until it has its components.
+fn hand_to_piece(ledger: &mut Ledger, objects: &Objects, piece: Entity, held: Applied) {
+    for entry in &held.specific {
+        let at = objects.place_of(entry.target).map(|(c, _)| (c, entry.node));
+        ledger.name(piece, entry.target, at);
+    }
+    ledger.note_applied(piece, held);
+    ledger.pieces.insert(piece);
 }
 
 /// Brings `entity`'s rules in its context's rule set to what its

@@ -53,10 +53,10 @@ pub(crate) struct Ledger {
     /// an entity without a physics object, or the context has no rules
     /// component yet): tried again every frame while they wait.
     pub(crate) waiting: HashSet<Entity>,
-    /// Pieces of tears that moved a root, holding their source's rules in
-    /// the book until bevy_rapier gives them their components: applied
-    /// again once they have them (a component the source lost in the frame
-    /// of the tear is not copied onto the piece).
+    /// Pieces of cuts and tears holding their source's rules in the book
+    /// until bevy_rapier gives them their components: applied again, with
+    /// the entities naming them, once they have them (a component the
+    /// source lost in the frame of the split is not copied onto the piece).
     pub(crate) pieces: HashSet<Entity>,
     /// Entities that lost a rule component since the last application.
     pub(crate) removed: Vec<Entity>,

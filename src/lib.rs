@@ -34,7 +34,7 @@ macro_rules! dimension {
         pub use hooks::{
             CalculatorContext, FullPass, ManifoldUpdate, PairCreated, PlanCause, Reach,
             RecalculationPolicy, RuleChange, RuleEvent, RuleEventHandler, RuleHooks, SplitPiece,
-            StepStats, WorldRef,
+            StepStats, TearListener, WorldRef,
         };
         pub use model::{
             CollisionGroup, CollisionRule, CollisionRuleSet, GroupTable, Node, OneWay, OneWayKind,

@@ -12,7 +12,7 @@ use super::super::rapier::prelude::*;
 use super::{CalculatorContext, ManifoldUpdate, PairCreated, PairKey, PairState, RecalculationPolicy, RuleHooks};
 use super::super::CollisionRule;
 use super::super::model::{BodyKinds, dynamic_body, soft_rigid};
-use super::super::resolve::special_case;
+use super::super::resolve::{Alias, special_case};
 use super::super::world::body_types;
 
 impl RuleHooks {
@@ -65,7 +65,11 @@ impl RuleHooks {
         a: ColliderHandle,
         b: ColliderHandle,
     ) -> CollisionRule {
-        let why = self.decide.rules.explain_rule(bodies, colliders, a, b);
+        // A piece torn during this bracket's steps stands on the body its
+        // source's rules are on (`hooks/tears.rs`).
+        let alias = |body| self.torn_alias(body);
+        let torn = self.soft.tear_log().any().then_some(&alias as Alias<'_>);
+        let why = self.decide.rules.explain_rule_as(bodies, colliders, a, b, torn);
         if why.rule != CollisionRule::NoPair || !why.by_kinematic_entry() {
             return why.rule;
         }
@@ -324,10 +328,25 @@ impl RuleHooks {
     /// Whether the crate decides the pair: a collider of it carries the
     /// crate's hook flag. Other pairs reach the hook only for the project's
     /// own hook bits.
+    /// So does a collider the plan has not met on a soft body torn during
+    /// this bracket's steps: Rapier copied it, the crate's flag with it, from
+    /// a collider of the source (`hooks/tears.rs`).
     #[inline]
-    fn decides(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
-        let hooked = |c| self.planned.plan.colliders.get(c).is_some_and(|p| p.hooked());
-        hooked(a) || hooked(b)
+    fn decides(&self, colliders: &ColliderSet, a: ColliderHandle, b: ColliderHandle) -> bool {
+        let plan = &self.planned.plan.colliders;
+        let hooked = |c| plan.get(c).is_some_and(|p| p.hooked());
+        hooked(a) || hooked(b) || (self.soft.tear_log().any() && [a, b].into_iter().any(|c| self.torn_copy(colliders, c)))
+    }
+
+    /// Whether `c` is a collider the plan has not met on a body of a soft
+    /// body torn since the last follow.
+    #[cold]
+    fn torn_copy(&self, colliders: &ColliderSet, c: ColliderHandle) -> bool {
+        self.planned.plan.colliders.get(c).is_none()
+            && colliders
+                .get(c)
+                .and_then(Collider::parent)
+                .is_some_and(|body| self.soft.tear_log().holds(body))
     }
 
     /// The project's hooks, if the project's own bits on `a` or `b` ask for
@@ -443,7 +462,7 @@ struct Verdict {
 impl PhysicsHooks for RuleHooks {
     fn filter_contact_pair(&self, context: &PairFilterContext<'_>) -> Option<SolverFlags> {
         let (a, b) = (context.collider1, context.collider2);
-        let ours = if self.decides(a, b) {
+        let ours = if self.decides(context.colliders, a, b) {
             self.answering();
             let Verdict {
                 rule,
@@ -474,7 +493,7 @@ impl PhysicsHooks for RuleHooks {
 
     fn filter_intersection_pair(&self, context: &PairFilterContext<'_>) -> bool {
         let (a, b) = (context.collider1, context.collider2);
-        if self.decides(a, b) {
+        if self.decides(context.colliders, a, b) {
             self.answering();
             let verdict = self.lookup(context);
             if !computes(verdict.rule, verdict.manifold) {
@@ -497,7 +516,7 @@ impl PhysicsHooks for RuleHooks {
         // Two soft surfaces without response keep their pair and its
         // events, and their contacts are disabled (`docs/semantics.md`,
         // "Soft bodies").
-        if context.soft_mut().is_some() && self.decides(a, b) {
+        if context.soft_mut().is_some() && self.decides(context.colliders, a, b) {
             let key = PairKey::new(a, b);
             let responds = match self.pairs.get(key) {
                 Some(state) => state.rule().responds(),

@@ -33,6 +33,7 @@ mod soft_bodies;
 mod stats;
 mod step;
 mod sweep;
+mod tears;
 mod witness;
 mod writer;
 
@@ -57,6 +58,7 @@ pub use reach::Reach;
 pub(crate) use reach::PairReach;
 pub use rule_events::{RuleChange, RuleEvent, RuleEventHandler};
 pub use soft_bodies::SplitPiece;
+pub use tears::TearListener;
 use roster::Roster;
 
 /// When live pairs are recalculated after the rules change.

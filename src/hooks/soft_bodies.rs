@@ -15,6 +15,8 @@
 //! have seen (a cluster added to a soft body adds a proxy body), and a pass
 //! over the soft bodies and their clusters (not their particles) otherwise.
 
+use std::sync::Arc;
+
 use hashbrown::HashMap;
 
 use super::super::rapier::prelude::*;
@@ -22,6 +24,7 @@ use super::super::rapier::prelude::*;
 use super::super::{CollisionRuleSet, Node};
 use super::super::model::{CollidersUnder, Heir};
 use super::super::world::Settings;
+use super::tears::TearLog;
 use super::{PlanCause, RuleHooks};
 
 /// A piece of a cut or a tear that the hooks gave the rules of the soft
@@ -51,6 +54,8 @@ pub(super) struct SoftBodies {
     copy_to_pieces: bool,
     /// The pieces given their source's rules since the last step.
     pieces: Vec<SplitPiece>,
+    /// The tears heard during steps since the last follow.
+    tears: Arc<TearLog>,
 }
 
 impl SoftBodies {
@@ -66,6 +71,20 @@ impl SoftBodies {
     /// A step ends: the pieces it followed are told.
     pub(super) fn forget_pieces(&mut self) {
         self.pieces.clear();
+    }
+
+    pub(super) fn tear_log(&self) -> &Arc<TearLog> {
+        &self.tears
+    }
+
+    /// Whether the hooks have seen soft body `handle`.
+    pub(super) fn knows(&self, handle: SoftBodyHandle) -> bool {
+        self.known.contains_key(&handle)
+    }
+
+    /// The root of soft body `handle` the hooks knew: where its rules are.
+    pub(super) fn known_root(&self, handle: SoftBodyHandle) -> Option<RigidBodyHandle> {
+        self.known.get(&handle).map(|seen| seen.root)
     }
 }
 
@@ -184,6 +203,8 @@ impl RuleHooks {
             return;
         }
         self.follow_soft_body_set(soft_bodies, bodies);
+        // The pieces torn during the last steps have their rules now.
+        self.soft.tears.clear();
     }
 
     /// Whether the pieces of cuts and tears get a copy of their source's

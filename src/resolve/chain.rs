@@ -1,7 +1,7 @@
 //! A collider's chain as the stages read it: each node with its record and
 //! its effective group (`docs/semantics.md`, "Terms", chain and effective group).
 
-use super::super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodySet};
+use super::super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodyHandle, RigidBodySet};
 use smallvec::SmallVec;
 
 use super::super::model::{Record, is_dynamic};
@@ -15,6 +15,11 @@ pub(super) struct Link<'a> {
     /// The node's effective group (`docs/semantics.md`, "Terms").
     pub(super) group: CollisionGroup,
 }
+
+/// A body that stands for another in the chains: the new body of a piece
+/// torn during a step stands for the body its source's rules are on, until
+/// the hooks follow the tear (`hooks/tears.rs`).
+pub(crate) type Alias<'a> = &'a dyn Fn(RigidBodyHandle) -> Option<RigidBodyHandle>;
 
 /// Chains of up to this many nodes are resolved without allocating.
 const INLINE_CHAIN: usize = 16;
@@ -34,6 +39,7 @@ impl CollisionRuleSet {
         bodies: &RigidBodySet,
         colliders: &ColliderSet,
         leaf: ColliderHandle,
+        alias: Option<Alias<'_>>,
     ) -> Chain<'a> {
         let present = colliders.contains(leaf);
         // A node with no group at or above it counts as the colliding body's
@@ -50,6 +56,9 @@ impl CollisionRuleSet {
                 group: fallback,
             });
             node = self.hierarchy.next(bodies, colliders, current);
+            if let (Some(alias), Some(Node::Body(body))) = (alias, node) {
+                node = alias(body).map(Node::Body).or(node);
+            }
         }
         // Effective groups: own group, else the nearest explicit one above,
         // else the fallback already stored. Walk from the root down.

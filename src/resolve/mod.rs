@@ -21,4 +21,5 @@ pub(crate) mod special_case;
 pub(crate) mod stages;
 
 pub use explanation::{Explanation, Stage};
+pub(crate) use chain::Alias;
 pub(crate) use special_case::special_case;

@@ -3,7 +3,7 @@
 
 use super::super::rapier::prelude::{ColliderHandle, ColliderSet, RigidBodySet};
 
-use super::chain::{Chain, Link};
+use super::chain::{Alias, Chain, Link};
 use super::special_case::special_case;
 use super::super::model::{BodyKinds, soft_rigid};
 use super::super::{CollisionRule, CollisionRuleSet, Explanation, Node, Stage};
@@ -79,8 +79,21 @@ impl CollisionRuleSet {
         a: ColliderHandle,
         b: ColliderHandle,
     ) -> Explanation {
-        let a = self.chain(bodies, colliders, a);
-        let b = self.chain(bodies, colliders, b);
+        self.explain_rule_as(bodies, colliders, a, b, None)
+    }
+
+    /// [`explain_rule`](Self::explain_rule), with bodies that stand for
+    /// others (the hook's path while a tear is not yet followed).
+    pub(crate) fn explain_rule_as(
+        &self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        a: ColliderHandle,
+        b: ColliderHandle,
+        alias: Option<Alias<'_>>,
+    ) -> Explanation {
+        let a = self.chain(bodies, colliders, a, alias);
+        let b = self.chain(bodies, colliders, b, alias);
         let mut explanation = self.calculate(&a, &b);
         let kinds = BodyKinds {
             first: a.dynamic,

@@ -562,6 +562,81 @@ fn the_pieces_of_a_strain_tear_keep_the_rules_of_the_body_they_came_from() {
     }
 }
 
+/// A strain tear in the first of three Rapier steps between `prepare` and
+/// `after_step` (as bevy_rapier runs substeps): with the hooks'
+/// `TearListener` as the step's event handler, the pieces' pairs in the
+/// next two steps follow the bar's rules. Each step, every particle sits
+/// where it sits in the same scene whose floor lies 1 km below, given the
+/// same rule (the floor keeps its handle, so Rapier visits the pairs in the
+/// same order), bit for bit, for every rule, way and planner setting.
+#[test]
+fn the_pieces_of_a_strain_tear_between_two_steps_of_a_bracket_follow_the_rules() {
+    let scene = |depth: f32, way: Way, rule: CollisionRule, planner: bool| {
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::ZERO;
+        // The floor's top at y = 0.1, through the middle of the bar.
+        let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, depth - 0.4)));
+        world.insert_collider(slab(5.0, 0.5), Some(floor));
+        let builder = soft_bar(at(0.0, 0.0), 1.0);
+        let ends: Vec<u32> = (0..builder.particle_positions().len() as u32)
+            .filter(|&i| builder.particle_positions()[i as usize].x.abs() > 0.99)
+            .collect();
+        let bar = world.insert_soft_body(builder.pinned_particles(ends.clone()).tear_strain(0.3));
+        let root = world.soft_bodies[bar].root_body();
+        let mut hooks = RuleHooks::default();
+        hooks.set_planner(planner);
+        give(&mut hooks, way, root, floor, rule);
+        let start: Vec<Vector> = ends.iter().map(|&i| world.soft_bodies[bar].particle_position(i as usize)).collect();
+        let listener = hooks.tear_listener();
+        let mut seen = Vec::new();
+        let mut torn_at = None;
+        for bracket in 0..40 {
+            hooks.follow_soft_bodies(&world.soft_bodies, &world.bodies);
+            hooks.prepare_with_graph(&world.bodies, &mut world.colliders, &world.narrow_phase);
+            hooks.freeze_manifolds(&world.narrow_phase);
+            hooks.wake_edited(&mut world.islands, &mut world.bodies);
+            for substep in 0..3 {
+                let pull = 1.5 * ((bracket * 3 + substep) as f32 / 60.0).min(1.0);
+                // The particles move to the pieces when the bar tears.
+                for (&i, &p) in ends.iter().zip(&start).filter(|_| torn_at.is_none()) {
+                    let mut target = p;
+                    target.x += if p.x > 0.0 { pull } else { -pull };
+                    if let Some(soft) = world.soft_bodies.get_mut(bar) {
+                        soft.set_particle_kinematic_target(i as usize, target);
+                    }
+                }
+                world.step_with_events(&hooks, &listener);
+                if world.soft_bodies.len() > 1 {
+                    torn_at.get_or_insert((bracket, substep));
+                }
+                let mut bodies: Vec<_> = world.soft_bodies.iter().map(|(h, _)| h).collect();
+                bodies.sort_unstable_by_key(|h| h.into_raw_parts());
+                seen.push(bodies.into_iter().flat_map(|b| particles(&world, b)).collect::<Vec<u32>>());
+            }
+            hooks.after_step(&world.narrow_phase, &world.bodies, &world.colliders);
+        }
+        (seen, torn_at)
+    };
+    for planner in [true, false] {
+        for rule in [CollisionRule::NoResponse, CollisionRule::NoContacts, CollisionRule::NoPair] {
+            for way in WAYS {
+                let (ruled, torn_at) = scene(0.0, way, rule, planner);
+                let (away, _) = scene(-1000.0, way, rule, planner);
+                let case = format!("{way:?} {rule:?}, planner {planner}");
+                let (bracket, substep) = torn_at.unwrap_or_else(|| panic!("{case}: the bar never tore"));
+                assert!(substep < 2, "{case}: the bar tore in the last step of bracket {bracket}, which tests nothing");
+                for (step, (ruled, away)) in ruled.iter().zip(&away).enumerate() {
+                    assert!(
+                        ruled == away,
+                        "{case}: step {step} (the bar tore in step {} of bracket {bracket}): the particles part from the scene without the floor",
+                        substep + 1
+                    );
+                }
+            }
+        }
+    }
+}
+
 /// A rigid collider hung on the proxy of a cluster added to a soft body is
 /// reached by the soft body's rules through the root.
 #[test]

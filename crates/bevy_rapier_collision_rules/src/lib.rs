@@ -113,7 +113,7 @@ pub use collision_rules::{
     CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
     GroupTable, ManifoldUpdate, Node, OneWay, OneWayKind, PairCreated, PlanCause, Problem, Reach,
     RecalculationPolicy, RuleChange, RuleColor, RuleError, RuleEvent, RuleEventHandler, RuleHooks,
-    RulePalette, Stage, StepStats, Until, WorldRef,
+    RulePalette, Stage, StepStats, TearListener, Until, WorldRef,
 };
 /// The main crate, for what is not re-exported here (its dimension's
 /// module, its Rapier).

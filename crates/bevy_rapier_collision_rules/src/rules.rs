@@ -20,6 +20,10 @@ pub struct CollisionRules {
     /// Where the context's `ColliderSet` was when it was last prepared:
     /// the hook finds its context by the set Rapier hands it.
     pub(crate) colliders_at: usize,
+    /// Where the hooks' tear listener, installed as the context's event
+    /// handler, is: a handler the project set since is wrapped in a new
+    /// one (see `step::listen_for_tears`).
+    pub(crate) listener_at: usize,
     /// The entities the rule events named (see `rule_events`).
     pub(crate) event_entities: EventEntities,
 }
@@ -34,6 +38,7 @@ impl Default for CollisionRules {
         CollisionRules {
             hooks,
             colliders_at: 0,
+            listener_at: 0,
             event_entities: EventEntities::default(),
         }
     }

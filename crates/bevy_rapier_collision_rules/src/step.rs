@@ -100,6 +100,7 @@ pub(crate) fn prepare_contexts(
         let colliders = &mut colliders.bypass_change_detection().colliders;
         let set = bodies.bypass_change_detection();
         rules.colliders_at = std::ptr::from_ref(colliders) as usize;
+        listen_for_tears(rules, simulation);
         let hooks = rules.hooks_mut();
         hooks.set_timestep(frame);
         // Pieces of tears take their source's rules, cluster proxies their
@@ -110,6 +111,28 @@ pub(crate) fn prepare_contexts(
         hooks.freeze_manifolds(&simulation.narrow_phase);
         hooks.wake_edited(&mut simulation.islands, bodies);
     }
+}
+
+/// Makes the hooks' [`TearListener`](super::collision_rules::TearListener) the context's event handler, passing
+/// every event on to the project's own handler, unless it already is: a
+/// strain tear in one of the frame's Rapier steps (substeps, catch-up
+/// steps) then gives the pieces their source's rules in the next ones
+/// (`docs/bevy.md`, "Soft bodies").
+fn listen_for_tears(rules: &mut CollisionRules, simulation: &mut RapierContextSimulation) {
+    let at = |simulation: &RapierContextSimulation| {
+        simulation.event_handler().map_or(0, |handler| {
+            std::ptr::from_ref(handler).cast::<()>() as usize
+        })
+    };
+    if rules.listener_at != 0 && at(simulation) == rules.listener_at {
+        return;
+    }
+    let mut listener = rules.hooks.tear_listener();
+    if let Some(project) = simulation.remove_event_handler() {
+        listener = listener.forwarding_to(project);
+    }
+    simulation.set_event_handler(listener);
+    rules.listener_at = at(simulation);
 }
 
 /// After the step: admits the pairs the hook met and forgets those Rapier

@@ -144,3 +144,94 @@ fn a_projects_own_hooks_keep_working_and_see_only_what_they_asked_for() {
         sim.rules().hooks().stats()
     );
 }
+
+/// Counts the collision events it is given.
+#[derive(Clone, Default)]
+struct Counter(std::sync::Arc<std::sync::atomic::AtomicUsize>);
+
+impl Counter {
+    fn count(&self) -> usize {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+impl bevy_rapier::rapier::pipeline::EventHandler for Counter {
+    fn handle_collision_event(
+        &self,
+        _: &bevy_rapier::rapier::prelude::RigidBodySet,
+        _: &bevy_rapier::rapier::prelude::ColliderSet,
+        _: bevy_rapier::rapier::prelude::CollisionEvent,
+        _: Option<&bevy_rapier::rapier::prelude::ContactPair>,
+    ) {
+        self.0.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    fn handle_contact_force_event(
+        &self,
+        _: bevy_rapier::rapier::prelude::Real,
+        _: &bevy_rapier::rapier::prelude::RigidBodySet,
+        _: &bevy_rapier::rapier::prelude::ColliderSet,
+        _: &bevy_rapier::rapier::prelude::ContactPair,
+        _: bevy_rapier::rapier::prelude::Real,
+    ) {
+    }
+
+    fn handle_soft_body_tear_event(
+        &self,
+        _: &bevy_rapier::rapier::prelude::SoftBodySet,
+        _: &bevy_rapier::rapier::prelude::SoftBodyTearEvent,
+    ) {
+    }
+}
+
+/// The plugin listens for soft-body tears through the context's event
+/// handler (`docs/bevy.md`, "Soft bodies"): a handler the project set
+/// before the first frame, or in place of another later, still gets every
+/// event.
+#[test]
+fn a_projects_own_event_handler_still_gets_its_events() {
+    let mut sim = Sim::new();
+    let context = sim.context();
+    let first = Counter::default();
+    sim.app
+        .world_mut()
+        .get_mut::<RapierContextSimulation>(context)
+        .unwrap()
+        .set_event_handler(first.clone());
+    let f = sim.spawn((floor(), ActiveEvents::COLLISION_EVENTS));
+    let ghost = sim.spawn((ball(0.0, 1.0), SpecificRules::new().with(f, NoResponse)));
+    sim.run(60);
+    assert!(
+        fell_through(sim.y(ghost)),
+        "the ghost passes the floor: y = {}",
+        sim.y(ghost)
+    );
+    let seen = first.count();
+    assert!(
+        seen >= 2,
+        "the project's handler saw the ghost enter and leave: {seen} events"
+    );
+    let second = Counter::default();
+    sim.app
+        .world_mut()
+        .get_mut::<RapierContextSimulation>(context)
+        .unwrap()
+        .set_event_handler(second.clone());
+    let lands = sim.spawn(ball(1.0, 1.0));
+    sim.run(60);
+    assert!(
+        rests(sim.y(lands)),
+        "a ball lands on the floor: y = {}",
+        sim.y(lands)
+    );
+    assert_eq!(
+        first.count(),
+        seen,
+        "the replaced handler gets nothing more"
+    );
+    assert!(
+        second.count() >= 1,
+        "the new handler saw the landing: {} events",
+        second.count()
+    );
+}

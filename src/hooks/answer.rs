@@ -328,25 +328,15 @@ impl RuleHooks {
     /// Whether the crate decides the pair: a collider of it carries the
     /// crate's hook flag. Other pairs reach the hook only for the project's
     /// own hook bits.
-    /// So does a collider the plan has not met on a soft body torn during
-    /// this bracket's steps: Rapier copied it, the crate's flag with it, from
-    /// a collider of the source (`hooks/tears.rs`).
+    /// So does a collider the plan has not met on a soft body the hooks
+    /// knew that tore during this bracket's steps: Rapier copied it, the
+    /// crate's settings with it, from a collider of the source
+    /// (`hooks/tears.rs`).
     #[inline]
     fn decides(&self, colliders: &ColliderSet, a: ColliderHandle, b: ColliderHandle) -> bool {
         let plan = &self.planned.plan.colliders;
         let hooked = |c| plan.get(c).is_some_and(|p| p.hooked());
-        hooked(a) || hooked(b) || (self.soft.tear_log().any() && [a, b].into_iter().any(|c| self.torn_copy(colliders, c)))
-    }
-
-    /// Whether `c` is a collider the plan has not met on a body of a soft
-    /// body torn since the last follow.
-    #[cold]
-    fn torn_copy(&self, colliders: &ColliderSet, c: ColliderHandle) -> bool {
-        self.planned.plan.colliders.get(c).is_none()
-            && colliders
-                .get(c)
-                .and_then(Collider::parent)
-                .is_some_and(|body| self.soft.tear_log().holds(body))
+        hooked(a) || hooked(b) || (self.soft.tear_log().any() && (self.torn_copy(colliders, a) || self.torn_copy(colliders, b)))
     }
 
     /// The project's hooks, if the project's own bits on `a` or `b` ask for

@@ -661,6 +661,8 @@ impl RuleHooks {
         self.planned.exhaustive = old.planned.exhaustive;
         self.boundary.dt = old.boundary.dt;
         self.soft.copy_to_pieces(old.soft.copies_to_pieces());
+        // A listener installed as the step's event handler stays in place.
+        self.soft.keep_tear_log(&old.soft);
         self.recording = old.recording.map(|r| Box::new(r.started_over()));
     }
 

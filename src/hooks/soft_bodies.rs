@@ -77,6 +77,12 @@ impl SoftBodies {
         &self.tears
     }
 
+    /// Hooks started over keep the log their listeners write to, emptied.
+    pub(super) fn keep_tear_log(&mut self, old: &SoftBodies) {
+        self.tears = Arc::clone(&old.tears);
+        self.tears.clear();
+    }
+
     /// Whether the hooks have seen soft body `handle`.
     pub(super) fn knows(&self, handle: SoftBodyHandle) -> bool {
         self.known.contains_key(&handle)
@@ -200,6 +206,8 @@ impl RuleHooks {
     pub fn follow_soft_bodies(&mut self, soft_bodies: &SoftBodySet, bodies: &RigidBodySet) {
         // A world that never had soft bodies: two compares a step.
         if soft_bodies.is_empty() && !self.soft.present {
+            // A soft body inserted, torn and removed between two follows.
+            self.soft.tears.clear();
             return;
         }
         self.follow_soft_body_set(soft_bodies, bodies);

@@ -57,8 +57,10 @@ impl TearLog {
 
     fn hear(&self, soft_bodies: &SoftBodySet, event: &SoftBodyTearEvent) {
         let mut torn = self.torn();
-        for piece in &event.pieces {
-            let Some(body) = soft_bodies.get(piece.soft_body) else {
+        // The torn body alone when nothing split off: a cluster it split
+        // still has a new proxy, with copies of colliders on it.
+        for holder in event.bodies() {
+            let Some(body) = soft_bodies.get(holder) else {
                 continue;
             };
             let root = body.root_body();
@@ -66,7 +68,7 @@ impl TearLog {
             for handle in bodies {
                 torn.push(TornBody {
                     body: handle,
-                    holder: piece.soft_body,
+                    holder,
                     source: event.soft_body,
                 });
             }
@@ -74,12 +76,6 @@ impl TearLog {
         if !torn.is_empty() {
             self.any.store(true, Ordering::Release);
         }
-    }
-
-    /// Whether `body` belongs to a soft body that tore since the last
-    /// follow.
-    pub(super) fn holds(&self, body: RigidBodyHandle) -> bool {
-        self.any() && self.torn().iter().any(|t| t.body == body)
     }
 
     /// The soft body `body` belongs to since a tear, and the soft body the
@@ -228,6 +224,19 @@ impl RuleHooks {
         }
     }
 
+    /// Whether `c` is a collider the plan has not met on a body of a soft
+    /// body the hooks knew that tore since the last follow: a copy Rapier
+    /// made of one of its colliders, the crate's settings with it.
+    pub(super) fn torn_copy(&self, colliders: &ColliderSet, c: ColliderHandle) -> bool {
+        let log = self.soft.tear_log();
+        log.any()
+            && self.planned.plan.colliders.get(c).is_none()
+            && colliders
+                .get(c)
+                .and_then(Collider::parent)
+                .is_some_and(|body| log.origin(body, |s| self.soft.knows(s)).is_some())
+    }
+
     /// The body whose rules a body of a piece torn since the last follow
     /// stands for: the root the hooks knew of the soft body it came from,
     /// for a body the rules know nothing of (a new root or proxy).
@@ -241,5 +250,21 @@ impl RuleHooks {
         }
         let source = log.origin(body, |s| self.soft.knows(s))?;
         self.soft.known_root(source).filter(|&root| root != body)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The Bevy plugin installs a listener once per context: hooks that
+    /// start over (a quickload) must still read what it hears.
+    #[test]
+    fn a_listener_writes_to_hooks_that_started_over() {
+        let mut hooks = RuleHooks::default();
+        let listener = hooks.tear_listener();
+        hooks.world_replaced();
+        assert!(listener.listens_for(&hooks), "the listener writes to a log the hooks no longer read");
+        assert!(!RuleHooks::default().tear_listener().listens_for(&hooks));
     }
 }

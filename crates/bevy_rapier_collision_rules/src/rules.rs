@@ -1,7 +1,9 @@
 //! The rules of one physics context: a component on the context entity,
 //! beside bevy_rapier's own (`docs/bevy.md`).
 
-use crate::collision_rules::{CollisionRuleSet, RuleHooks};
+use std::sync::Arc;
+
+use crate::collision_rules::{CollisionRuleSet, RuleHooks, TearListener};
 use crate::rule_events::EventEntities;
 use bevy::prelude::*;
 use bevy_rapier::rapier::prelude::ColliderSet;
@@ -20,10 +22,9 @@ pub struct CollisionRules {
     /// Where the context's `ColliderSet` was when it was last prepared:
     /// the hook finds its context by the set Rapier hands it.
     pub(crate) colliders_at: usize,
-    /// Where the hooks' tear listener, installed as the context's event
-    /// handler, is: a handler the project set since is wrapped in a new
-    /// one (see `step::listen_for_tears`).
-    pub(crate) listener_at: usize,
+    /// The hooks' tear listener installed as the context's event handler,
+    /// and where its box is (see `step::listen_for_tears`).
+    pub(crate) listener: Option<(Arc<TearListener>, usize)>,
     /// The entities the rule events named (see `rule_events`).
     pub(crate) event_entities: EventEntities,
 }
@@ -38,7 +39,7 @@ impl Default for CollisionRules {
         CollisionRules {
             hooks,
             colliders_at: 0,
-            listener_at: 0,
+            listener: None,
             event_entities: EventEntities::default(),
         }
     }

@@ -10,7 +10,15 @@ use bevy_rapier::plugin::context::{
 };
 use bevy_rapier::plugin::{RapierConfiguration, TimestepMode};
 
+use std::sync::Arc;
+
+use bevy_rapier::rapier::prelude::{
+    ColliderSet, CollisionEvent, ContactPair, EventHandler, Real, RigidBodySet, SoftBodySet,
+    SoftBodyTearEvent,
+};
+
 use super::CollisionRules;
+use super::collision_rules::TearListener;
 
 /// Before the rule components are applied: the pieces of tears take their
 /// source's rules in the rule set, so that the ledger can follow the tear
@@ -113,26 +121,71 @@ pub(crate) fn prepare_contexts(
     }
 }
 
-/// Makes the hooks' [`TearListener`](super::collision_rules::TearListener) the context's event handler, passing
+/// Makes the hooks' [`TearListener`] the context's event handler, passing
 /// every event on to the project's own handler, unless it already is: a
 /// strain tear in one of the frame's Rapier steps (substeps, catch-up
 /// steps) then gives the pieces their source's rules in the next ones
-/// (`docs/bevy.md`, "Soft bodies").
+/// (`docs/bevy.md`, "Soft bodies"). The plugin keeps a share of the
+/// listener it installed: while the context holds the other, at the same
+/// place, it is still installed (a box of the project's at the address of
+/// a dropped listener cannot pass for it).
 fn listen_for_tears(rules: &mut CollisionRules, simulation: &mut RapierContextSimulation) {
     let at = |simulation: &RapierContextSimulation| {
         simulation.event_handler().map_or(0, |handler| {
             std::ptr::from_ref(handler).cast::<()>() as usize
         })
     };
-    if rules.listener_at != 0 && at(simulation) == rules.listener_at {
+    if let Some((listener, place)) = &rules.listener
+        && Arc::strong_count(listener) == 2
+        && at(simulation) == *place
+    {
         return;
     }
     let mut listener = rules.hooks.tear_listener();
     if let Some(project) = simulation.remove_event_handler() {
         listener = listener.forwarding_to(project);
     }
-    simulation.set_event_handler(listener);
-    rules.listener_at = at(simulation);
+    let listener = Arc::new(listener);
+    simulation.set_event_handler(Installed(Arc::clone(&listener)));
+    rules.listener = Some((listener, at(simulation)));
+}
+
+/// The listener as a context's event handler: the plugin holds another
+/// share of it.
+struct Installed(Arc<TearListener>);
+
+impl EventHandler for Installed {
+    fn handle_collision_event(
+        &self,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        event: CollisionEvent,
+        contact_pair: Option<&ContactPair>,
+    ) {
+        self.0
+            .handle_collision_event(bodies, colliders, event, contact_pair);
+    }
+
+    fn handle_contact_force_event(
+        &self,
+        dt: Real,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+        contact_pair: &ContactPair,
+        total_force_magnitude: Real,
+    ) {
+        self.0.handle_contact_force_event(
+            dt,
+            bodies,
+            colliders,
+            contact_pair,
+            total_force_magnitude,
+        );
+    }
+
+    fn handle_soft_body_tear_event(&self, soft_bodies: &SoftBodySet, event: &SoftBodyTearEvent) {
+        self.0.handle_soft_body_tear_event(soft_bodies, event);
+    }
 }
 
 /// After the step: admits the pairs the hook met and forgets those Rapier

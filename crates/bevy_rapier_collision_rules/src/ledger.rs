@@ -69,9 +69,34 @@ pub(crate) struct Ledger {
     /// Entities whose applied entries may include one with an end (some
     /// may have ended or gone since): looked at after each step.
     pub(crate) ending: HashSet<Entity>,
+    /// How many rule components (and contexts' own tables) the world
+    /// holds: counted as they come and go.
+    pub(crate) carriers: usize,
+    /// Some context's hooks watched, tracked or hooked something in their
+    /// last step, or planned with bits from the project's room: changes of
+    /// the project's settings must reach them.
+    pub(crate) hooks_reach: bool,
 }
 
 impl Ledger {
+    /// Whether the edits have nothing to follow or apply this frame: no
+    /// rule component in the world, nothing held in the book or noted by
+    /// the observers, and no context whose hooks read the project's
+    /// settings (`docs/bevy.md`, "Cost").
+    pub(crate) fn at_rest(&self) -> bool {
+        self.carriers == 0
+            && !self.hooks_reach
+            && self.applied.is_empty()
+            && self.named.is_empty()
+            && self.waiting.is_empty()
+            && self.pieces.is_empty()
+            && self.removed.is_empty()
+            && self.moved.is_empty()
+            && self.settings_removed.is_empty()
+            && self.table_dropped.is_empty()
+            && self.ending.is_empty()
+    }
+
     /// Forgets that `entity`'s entries name their targets.
     pub(crate) fn unname(&mut self, entity: Entity, applied: &Applied) {
         for entry in &applied.specific {

@@ -179,15 +179,30 @@ impl Plugin for CollisionRulesPlugin {
         // parameters and change ticks: Bevy's executor spends about as much
         // on starting a system as an idle stage spends on its work
         // (`docs/performance.md`, "The Bevy frame").
-        let prepare = share_table
+        // A frame with nothing to follow skips them all, which leaves a
+        // world without rules with one system before the step: the stages'
+        // code and queries, idle, cost a frame more in the processor's
+        // instruction cache than in instructions (`docs/bevy.md`, "Cost").
+        // Skipped stages see the changes made meanwhile when they next run.
+        let edits = share_table
             .pipe(follow_hierarchy)
             .pipe(follow_soft_bodies)
             .pipe(name_tear_pieces)
             .pipe(apply_rule_components)
             .pipe(notice_project_settings)
-            .pipe(prepare_contexts)
-            .in_set(RulesSystems::Prepare);
-        app.add_systems(self.schedule, prepare);
+            .run_if(edits_to_follow);
+        app.add_systems(
+            self.schedule,
+            (edits, prepare_contexts)
+                .chain()
+                .in_set(RulesSystems::Prepare),
+        );
+        count_carriers::<RuleGroup>(app);
+        count_carriers::<PersonalRule>(app);
+        count_carriers::<SpecificRules>(app);
+        count_carriers::<OneWaySurface>(app);
+        count_carriers::<ContextRuleTable>(app);
+        app.add_observer(note_new_context);
         // Warns once if bevy_rapier does not step with the rules' hooks here.
         app.add_systems(
             self.schedule,
@@ -248,6 +263,25 @@ fn note_world_replaced(
     {
         rules.world_replaced();
     }
+}
+
+/// Whether the edits have anything to do this frame (see
+/// [`Ledger::at_rest`]): a change of the shared table too.
+fn edits_to_follow(ledger: Res<Ledger>, shared: Res<RuleTable>) -> bool {
+    !ledger.at_rest() || shared.is_changed()
+}
+
+/// Counts the entities carrying component `T` as it comes and goes.
+fn count_carriers<T: Component>(app: &mut App) {
+    app.add_observer(|_: On<Add<T>>, mut ledger: ResMut<Ledger>| ledger.carriers += 1)
+        .add_observer(|_: On<Remove<T>>, mut ledger: ResMut<Ledger>| {
+            ledger.carriers = ledger.carriers.saturating_sub(1);
+        });
+}
+
+/// A new context takes the shared table.
+fn note_new_context(event: On<Add<CollisionRules>>, mut ledger: ResMut<Ledger>) {
+    ledger.table_dropped.push(event.entity);
 }
 
 /// A context that dropped its own table takes the shared one again.

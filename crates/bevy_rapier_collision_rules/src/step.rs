@@ -19,6 +19,7 @@ use bevy_rapier::rapier::prelude::{
 
 use super::CollisionRules;
 use super::collision_rules::TearListener;
+use super::ledger::Ledger;
 
 /// Before the rule components are applied: the pieces of tears take their
 /// source's rules in the rule set, so that the ledger can follow the tear
@@ -95,7 +96,9 @@ pub(crate) fn prepare_contexts(
     mut contexts: Query<Prepared>,
     mode: Res<TimestepMode>,
     time: Res<Time>,
+    mut ledger: ResMut<Ledger>,
 ) {
+    let mut reach = false;
     for (mut rules, mut simulation, mut colliders, mut bodies, config, ahead) in &mut contexts {
         let rules = &mut *rules;
         let frame = frame_time(
@@ -118,6 +121,18 @@ pub(crate) fn prepare_contexts(
         hooks.prepare_with_graph(bodies, colliders, &simulation.narrow_phase);
         hooks.freeze_manifolds(&simulation.narrow_phase);
         hooks.wake_edited(&mut simulation.islands, bodies);
+        let last = hooks.stats();
+        reach |= last.watched_colliders > 0
+            || last.watched_bodies > 0
+            || last.tracked_pairs > 0
+            || last.hooked_colliders > 0
+            || last.full_pass.is_some()
+            || last.shares_project_bits;
+    }
+    // Read through `Mut` only when it changes: the book's change tick is
+    // not the edits' business.
+    if ledger.hooks_reach != reach {
+        ledger.hooks_reach = reach;
     }
 }
 

@@ -136,3 +136,58 @@ fn an_entry_about_an_entity_spawned_later_takes_effect_once_it_exists() {
         sim.y(b)
     );
 }
+
+/// A world without rules skips the edits (`docs/bevy.md`, "Cost"): after
+/// idle frames, a change of the shared table alone, a rule component, and
+/// a context's own table each still reach the rules the frame they come.
+#[test]
+fn rules_that_come_after_idle_frames_are_followed() {
+    // The shared table's default rule.
+    let mut sim = Sim::new();
+    sim.spawn(floor());
+    let resting = sim.spawn(ball(0.0, 0.3));
+    sim.run(30);
+    assert!(rests(sim.y(resting)), "y = {}", sim.y(resting));
+    sim.table().set_default_rule(NoPair);
+    sim.run(60);
+    assert!(
+        fell_through(sim.y(resting)),
+        "the table's default NoPair: y = {}",
+        sim.y(resting)
+    );
+
+    // A component on an entity that had none.
+    let mut sim = Sim::new();
+    sim.spawn(floor());
+    let resting = sim.spawn(ball(0.0, 0.3));
+    sim.run(30);
+    sim.entity_mut(resting).insert(PersonalRule(NoPair));
+    sim.run(60);
+    assert!(
+        fell_through(sim.y(resting)),
+        "a personal NoPair: y = {}",
+        sim.y(resting)
+    );
+
+    // A context's own table, added and then changed in place.
+    let mut sim = Sim::new();
+    sim.spawn(floor());
+    let resting = sim.spawn(ball(0.0, 0.3));
+    sim.run(30);
+    let context = sim.context();
+    sim.entity_mut(context).insert(ContextRuleTable::default());
+    sim.run(5);
+    assert!(rests(sim.y(resting)), "y = {}", sim.y(resting));
+    sim.app
+        .world_mut()
+        .get_mut::<ContextRuleTable>(context)
+        .unwrap()
+        .0
+        .set_default_rule(NoPair);
+    sim.run(60);
+    assert!(
+        fell_through(sim.y(resting)),
+        "the context's own default NoPair: y = {}",
+        sim.y(resting)
+    );
+}

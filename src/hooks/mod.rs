@@ -9,7 +9,8 @@
 //! the pairs Rapier made and ended; [`soft_bodies`]: what a soft body is to
 //! the rules, and the pieces of cuts and tears). During the step Rapier asks it about
 //! the pairs of hooked colliders ([`answer`]), which it answers from the
-//! table of live pairs ([`pair_state`]). [`live`] is the live-pair API,
+//! table of live pairs ([`pair_state`]); [`tears`] hears the strain tears
+//! of a step, for the next steps before the next `prepare`. [`live`] is the live-pair API,
 //! answered on demand from Rapier's graph; [`reach`] says how far the
 //! rules reach a collider or a pair; [`rule_events`] reports what
 //! changed for live pairs to a game that asks; [`stats`] says what the

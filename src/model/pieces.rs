@@ -23,9 +23,11 @@ impl CollisionRuleSet {
     /// entries, and later edits through either), every entry another node
     /// holds about `source` is held about `piece` too, and `piece` gets
     /// `source`'s parent unless it has one. A [`Heir::Piece`] that holds
-    /// rules of its own keeps its record. Returns whether `piece` took
-    /// `source`'s rules: false for a removed `piece` and for one that kept
-    /// its own record.
+    /// rules of its own keeps its record, and takes from `source`'s what
+    /// its own does not say (a group, a personal rule, a one-way surface,
+    /// an entry about a node its own entries do not name). Returns whether
+    /// `piece` took `source`'s rules as they are: false for a removed
+    /// `piece` and for one that kept its own record.
     ///
     /// With `copy`, `piece` gets a record of its own with a copy of
     /// `source`'s personal rule, group and specific entries instead of
@@ -39,7 +41,27 @@ impl CollisionRuleSet {
             return false;
         }
         let own = heir == Heir::Piece && self.record(to).is_some_and(|r| !r.is_empty());
-        match self.record(from).filter(|r| !r.is_empty() && !own).cloned() {
+        match self.record(from).filter(|r| !r.is_empty()).cloned() {
+            // A cluster proxy with rules of its own became the piece's root:
+            // before the split its colliders read the proxy's rules, then
+            // the source's. The source's fill in what the proxy does not
+            // say, as the chain did (`docs/semantics.md`, "Soft bodies").
+            Some(record) if own => {
+                if self.group(to).is_none() && record.group.is_some() {
+                    self.set_group(to, record.group);
+                }
+                if !self.personal(to).is_decided() && record.personal.is_decided() {
+                    self.set_personal(to, record.personal);
+                }
+                if self.one_way(to).is_none() && record.one_way.is_some() {
+                    self.set_one_way(to, record.one_way);
+                }
+                for (other, rule) in record.specific {
+                    if !self.specific(to, other).is_decided() {
+                        self.set_specific_keeping_end(to, other, rule, (from, other));
+                    }
+                }
+            }
             Some(record) if copy => {
                 self.set_group(to, record.group);
                 self.set_personal(to, record.personal);

@@ -637,6 +637,58 @@ fn the_pieces_of_a_strain_tear_between_two_steps_of_a_bracket_follow_the_rules()
     }
 }
 
+/// A cluster with rules of its own that lies wholly in a piece of a tear
+/// becomes that piece's root (rapier 0.36.1). Before the tear its
+/// colliders read the cluster's rules, then the bar's; after it the
+/// piece keeps the cluster's and takes the bar's where the cluster says
+/// nothing: the bar's group, which ignores the floor's, holds for every
+/// piece, and the cluster keeps its own entry.
+#[test]
+fn a_piece_rooted_at_a_ruled_cluster_keeps_the_cluster_s_rules_over_the_bar_s() {
+    let mut found = 0;
+    // The cluster over either end, the tear across several places: those
+    // that split the cluster's end off give the piece its proxy as root.
+    for (end_right, x) in [(true, 0.4), (false, -0.4), (true, 0.2), (false, -0.2), (false, 0.4), (true, -0.4)] {
+        let (mut world, floor) = on_ground();
+        let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
+        let root = world.soft_bodies[bar].root_body();
+        let far = world.insert_body(RigidBodyBuilder::fixed().translation(at(100.0, 0.0)));
+        world.insert_collider(cube(0.5), Some(far));
+        let count = world.soft_bodies[bar].particle_positions().count() as u32;
+        let x_of = |world: &PhysicsWorld, v: u32| world.soft_bodies[bar].particle_position(v as usize).x;
+        let end: Vec<u32> = (0..count).filter(|&v| (x_of(&world, v) > 0.3 * x.signum()) == end_right).collect();
+        let cluster = world.add_soft_body_cluster(bar, &end).expect("a cluster of the bar's end");
+        let proxy = world.soft_bodies[bar].cluster_proxy(cluster).expect("its proxy");
+        let mut hooks = RuleHooks::default();
+        let rules = hooks.rules_mut();
+        let (bars, floors) = (rules.create_group(), rules.create_group());
+        rules.set_group(root, Some(bars));
+        rules.set_group(floor, Some(floors));
+        rules.set_group_rule(bars, floors, CollisionRule::NoPair);
+        rules.set_specific(proxy, far, CollisionRule::NoResponse);
+        hooks.step(&mut world);
+        let edges = edges_across(&world.soft_bodies[bar], x);
+        world.tear_soft_body(bar, &edges, &[]).expect("the bar tears");
+        hooks.step(&mut world);
+        let Some(rooted) = world.soft_bodies.iter().find(|(_, b)| b.root_body() == proxy).map(|(h, _)| h) else {
+            continue;
+        };
+        found += 1;
+        let case = format!("cluster at the {} end, torn across x = {x}", if end_right { "right" } else { "left" });
+        assert_eq!(hooks.rules().group(proxy), Some(bars), "{case}: the piece's root takes the bar's group");
+        assert_eq!(hooks.rules().specific(proxy, far), CollisionRule::NoResponse, "{case}: and keeps the cluster's own entry");
+        for _ in 0..STEPS {
+            hooks.step(&mut world);
+        }
+        for (piece, _) in world.soft_bodies.iter() {
+            let low = lowest(&world, piece);
+            let which = if piece == rooted { "the cluster's piece" } else { "a piece" };
+            assert!(low < -1.0, "{case}: {which} {piece:?} falls through the floor its bar ignores: lowest particle at {low}");
+        }
+    }
+    assert!(found > 0, "no tear gave a piece the cluster's proxy as root");
+}
+
 /// A rigid collider hung on the proxy of a cluster added to a soft body is
 /// reached by the soft body's rules through the root.
 #[test]

@@ -518,37 +518,55 @@ fn the_pieces_of_a_cut_or_a_tear_keep_the_rules_of_the_body_they_came_from() {
     }
 }
 
+/// A bar at the origin pinned at its ends, which tears past 30% strain,
+/// and where its ends started.
+struct Strained {
+    bar: SoftBodyHandle,
+    ends: Vec<u32>,
+    start: Vec<Vector>,
+}
+
+impl Strained {
+    fn insert(world: &mut PhysicsWorld) -> Strained {
+        let builder = soft_bar(at(0.0, 0.0), 1.0);
+        let ends: Vec<u32> = (0..builder.particle_positions().len() as u32)
+            .filter(|&i| builder.particle_positions()[i as usize].x.abs() > 0.99)
+            .collect();
+        let bar = world.insert_soft_body(builder.pinned_particles(ends.clone()).tear_strain(0.3));
+        let start = ends.iter().map(|&i| world.soft_bodies[bar].particle_position(i as usize)).collect();
+        Strained { bar, ends, start }
+    }
+
+    /// Moves each end `pull` m outward from where it started.
+    fn pull(&self, world: &mut PhysicsWorld, pull: f32) {
+        for (&i, &p) in self.ends.iter().zip(&self.start) {
+            let mut target = p;
+            target.x += if p.x > 0.0 { pull } else { -pull };
+            if let Some(soft) = world.soft_bodies.get_mut(self.bar) {
+                soft.set_particle_kinematic_target(i as usize, target);
+            }
+        }
+    }
+}
+
 /// A bar pulled apart past its tear strain tears during Rapier's step; the
 /// pieces share the bar's rules from the next step.
 #[test]
 fn the_pieces_of_a_strain_tear_keep_the_rules_of_the_body_they_came_from() {
     let mut world = PhysicsWorld::new();
     world.gravity = Vector::ZERO;
-    let builder = soft_bar(at(0.0, 0.0), 1.0);
-    let ends: Vec<u32> = (0..builder.particle_positions().len() as u32)
-        .filter(|&i| builder.particle_positions()[i as usize].x.abs() > 0.99)
-        .collect();
-    let bar = world.insert_soft_body(builder.pinned_particles(ends.clone()).tear_strain(0.3));
-    let root = world.soft_bodies[bar].root_body();
+    let strained = Strained::insert(&mut world);
+    let root = world.soft_bodies[strained.bar].root_body();
     let other = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -5.0)));
     let mut hooks = RuleHooks::default();
     hooks.rules_mut().set_personal(root, CollisionRule::NoContacts);
     hooks.rules_mut().set_specific(other, root, CollisionRule::NoPair);
-    let start: Vec<Vector> = ends.iter().map(|&i| world.soft_bodies[bar].particle_position(i as usize)).collect();
     for k in 0..120 {
         // The particles move to the pieces when the bar tears.
         if world.soft_bodies.len() > 1 {
             break;
         }
-        let pull = 1.5 * (k as f32 / 60.0).min(1.0);
-        for (&i, &p) in ends.iter().zip(&start) {
-            let away = if p.x > 0.0 { pull } else { -pull };
-            let mut target = p;
-            target.x += away;
-            if let Some(soft) = world.soft_bodies.get_mut(bar) {
-                soft.set_particle_kinematic_target(i as usize, target);
-            }
-        }
+        strained.pull(&mut world, 1.5 * (k as f32 / 60.0).min(1.0));
         hooks.step(&mut world);
     }
     // The step after the tear gives the pieces their rules.
@@ -577,16 +595,11 @@ fn the_pieces_of_a_strain_tear_between_two_steps_of_a_bracket_follow_the_rules()
         // The floor's top at y = 0.1, through the middle of the bar.
         let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, depth - 0.4)));
         world.insert_collider(slab(5.0, 0.5), Some(floor));
-        let builder = soft_bar(at(0.0, 0.0), 1.0);
-        let ends: Vec<u32> = (0..builder.particle_positions().len() as u32)
-            .filter(|&i| builder.particle_positions()[i as usize].x.abs() > 0.99)
-            .collect();
-        let bar = world.insert_soft_body(builder.pinned_particles(ends.clone()).tear_strain(0.3));
-        let root = world.soft_bodies[bar].root_body();
+        let strained = Strained::insert(&mut world);
+        let root = world.soft_bodies[strained.bar].root_body();
         let mut hooks = RuleHooks::default();
         hooks.set_planner(planner);
         give(&mut hooks, way, root, floor, rule);
-        let start: Vec<Vector> = ends.iter().map(|&i| world.soft_bodies[bar].particle_position(i as usize)).collect();
         let listener = hooks.tear_listener();
         let mut seen = Vec::new();
         let mut torn_at = None;
@@ -596,14 +609,9 @@ fn the_pieces_of_a_strain_tear_between_two_steps_of_a_bracket_follow_the_rules()
             hooks.freeze_manifolds(&world.narrow_phase);
             hooks.wake_edited(&mut world.islands, &mut world.bodies);
             for substep in 0..3 {
-                let pull = 1.5 * ((bracket * 3 + substep) as f32 / 60.0).min(1.0);
                 // The particles move to the pieces when the bar tears.
-                for (&i, &p) in ends.iter().zip(&start).filter(|_| torn_at.is_none()) {
-                    let mut target = p;
-                    target.x += if p.x > 0.0 { pull } else { -pull };
-                    if let Some(soft) = world.soft_bodies.get_mut(bar) {
-                        soft.set_particle_kinematic_target(i as usize, target);
-                    }
+                if torn_at.is_none() {
+                    strained.pull(&mut world, 1.5 * ((bracket * 3 + substep) as f32 / 60.0).min(1.0));
                 }
                 world.step_with_events(&hooks, &listener);
                 if world.soft_bodies.len() > 1 {

@@ -76,7 +76,11 @@ impl CollisionRuleSet {
         if self.is_named(from) {
             let holders: Vec<(Node, CollisionRule)> = self.entries_about(from).collect();
             for (holder, rule) in holders {
-                self.set_specific_keeping_end(holder, to, rule, (holder, from));
+                // An entry about the cluster itself came before the one about
+                // the source in its colliders' chain: it stays.
+                if !(own && self.specific(holder, to).is_decided()) {
+                    self.set_specific_keeping_end(holder, to, rule, (holder, from));
+                }
             }
         }
         if let Some(parent) = self.parent(source).filter(|_| self.parent(piece).is_none()) {

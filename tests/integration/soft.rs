@@ -650,7 +650,8 @@ fn the_pieces_of_a_strain_tear_between_two_steps_of_a_bracket_follow_the_rules()
 /// colliders read the cluster's rules, then the bar's; after it the
 /// piece keeps the cluster's and takes the bar's where the cluster says
 /// nothing: the bar's group, which ignores the floor's, holds for every
-/// piece, and the cluster keeps its own entry.
+/// piece, the cluster keeps its own entry, and another body's entry about
+/// the cluster stays over its entry about the bar.
 #[test]
 fn a_piece_rooted_at_a_ruled_cluster_keeps_the_cluster_s_rules_over_the_bar_s() {
     let mut found = 0;
@@ -662,6 +663,8 @@ fn a_piece_rooted_at_a_ruled_cluster_keeps_the_cluster_s_rules_over_the_bar_s() 
         let root = world.soft_bodies[bar].root_body();
         let far = world.insert_body(RigidBodyBuilder::fixed().translation(at(100.0, 0.0)));
         world.insert_collider(cube(0.5), Some(far));
+        let near = world.insert_body(RigidBodyBuilder::fixed().translation(at(-100.0, 0.0)));
+        world.insert_collider(cube(0.5), Some(near));
         let count = world.soft_bodies[bar].particle_positions().count() as u32;
         let x_of = |world: &PhysicsWorld, v: u32| world.soft_bodies[bar].particle_position(v as usize).x;
         let end: Vec<u32> = (0..count).filter(|&v| (x_of(&world, v) > 0.3 * x.signum()) == end_right).collect();
@@ -674,6 +677,10 @@ fn a_piece_rooted_at_a_ruled_cluster_keeps_the_cluster_s_rules_over_the_bar_s() 
         rules.set_group(floor, Some(floors));
         rules.set_group_rule(bars, floors, CollisionRule::NoPair);
         rules.set_specific(proxy, far, CollisionRule::NoResponse);
+        // Another body's entries about the cluster and about the bar: the
+        // first comes before the second in the cluster colliders' chains.
+        rules.set_specific(near, proxy, CollisionRule::NoResponse);
+        rules.set_specific(near, root, CollisionRule::NoPair);
         hooks.step(&mut world);
         let edges = edges_across(&world.soft_bodies[bar], x);
         world.tear_soft_body(bar, &edges, &[]).expect("the bar tears");
@@ -685,6 +692,7 @@ fn a_piece_rooted_at_a_ruled_cluster_keeps_the_cluster_s_rules_over_the_bar_s() 
         let case = format!("cluster at the {} end, torn across x = {x}", if end_right { "right" } else { "left" });
         assert_eq!(hooks.rules().group(proxy), Some(bars), "{case}: the piece's root takes the bar's group");
         assert_eq!(hooks.rules().specific(proxy, far), CollisionRule::NoResponse, "{case}: and keeps the cluster's own entry");
+        assert_eq!(hooks.rules().specific(near, proxy), CollisionRule::NoResponse, "{case}: and the entry about it");
         for _ in 0..STEPS {
             hooks.step(&mut world);
         }

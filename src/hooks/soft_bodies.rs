@@ -248,8 +248,8 @@ impl RuleHooks {
 
     /// The pieces of cuts and tears that the hooks gave the rules of the
     /// soft body they came from since the last step, in the order they
-    /// were followed (not a piece whose root kept rules of its own, a
-    /// cluster proxy given rules before the split): for a project that
+    /// were followed (a piece whose root is a cluster proxy with rules of
+    /// its own holds them over its source's): for a project that
     /// keeps rules of its own beside each soft body (the Bevy plugin's
     /// book of each entity's components) and must note what each piece
     /// was given. Read it after

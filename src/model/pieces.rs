@@ -26,8 +26,7 @@ impl CollisionRuleSet {
     /// rules of its own keeps its record, and takes from `source`'s what
     /// its own does not say (a group, a personal rule, a one-way surface,
     /// an entry about a node its own entries do not name). Returns whether
-    /// `piece` took `source`'s rules as they are: false for a removed
-    /// `piece` and for one that kept its own record.
+    /// `piece` took `source`'s rules: false for a removed `piece`.
     ///
     /// With `copy`, `piece` gets a record of its own with a copy of
     /// `source`'s personal rule, group and specific entries instead of
@@ -87,7 +86,7 @@ impl CollisionRuleSet {
             // A piece is a leaf of Rapier's making: no cycle goes through it.
             let _ = self.set_parent(piece, parent);
         }
-        !own
+        true
     }
 
     /// `set_specific`, with the end the entry `like` has, if any: a piece's

@@ -3,7 +3,7 @@
 //! difference is edited, so that `OnChange` recalculates just the pairs an
 //! edit can affect (`docs/bevy.md`).
 
-use crate::collision_rules::{CollisionRule, CollisionRuleSet, Node, SplitPiece};
+use crate::collision_rules::{CollisionRule, Node, SplitPiece};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_rapier::plugin::context::RapierRigidBodySet;
@@ -13,7 +13,7 @@ use bevy_rapier::prelude::{
 };
 
 use super::components::SpecificEntry;
-use super::ledger::{Applied, AppliedEntry, Ledger, Place};
+use super::ledger::{Applied, AppliedEntry, Holder, Ledger, Place};
 use super::{CollisionRules, OneWaySurface, PersonalRule, RuleGroup, SpecificRules};
 
 /// An entity's physics handles: its rigid body, soft body, collider, context.
@@ -43,22 +43,29 @@ impl Objects<'_, '_> {
     /// bevy_rapier's components until the next writeback, but bevy_rapier
     /// maps it to its soft body at once: that soft body's root is its place.
     pub(crate) fn place_of(&self, entity: Entity) -> Option<Place> {
+        self.placed(entity).map(|(place, _)| place)
+    }
+
+    /// [`place_of`](Self::place_of), and how the entity holds it.
+    fn placed(&self, entity: Entity) -> Option<(Place, Holder)> {
         let (body, soft, collider, link) = self.handles.get(entity).ok()?;
         let Some(link) = link else {
             let bare = body.is_none() && soft.is_none() && collider.is_none();
-            return bare.then(|| self.unsynced_soft_body(entity)).flatten();
+            let place = bare.then(|| self.unsynced_soft_body(entity)).flatten()?;
+            return Some((place, Holder::SoftRoot));
         };
         let context = link.0;
-        let node = match (body, soft, collider) {
-            (Some(body), _, _) => Node::from(body.0),
+        let (node, holder) = match (body, soft, collider) {
+            (Some(body), _, _) => (Node::from(body.0), Holder::Own),
             (None, Some(soft), _) => {
                 let (_, set) = self.sets.get(context).ok()?;
-                Node::from(set.soft_bodies.get(soft.0)?.root_body())
+                let root = set.soft_bodies.get(soft.0)?.root_body();
+                (Node::from(root), Holder::SoftRoot)
             }
-            (None, None, Some(collider)) => Node::from(collider.0),
+            (None, None, Some(collider)) => (Node::from(collider.0), Holder::Own),
             (None, None, None) => return None,
         };
-        Some((context, node))
+        Some(((context, node), holder))
     }
 
     /// The place of an entity bevy_rapier mapped to a soft body before
@@ -257,9 +264,7 @@ fn follow_tears(ledger: &mut Ledger, objects: &Objects, softs: &Query<Entity, Ru
         if !ledger.applied.contains_key(&tear.piece) {
             hand_to_piece(ledger, objects, tear.piece, held);
         }
-        if let Some(applied) = ledger.applied.get_mut(&soft) {
-            applied.place = tear.now;
-        }
+        ledger.move_applied(soft, tear.now);
     }
     let torn: Vec<(Entity, Place, Tear)> = ledger
         .named
@@ -367,7 +372,8 @@ fn hand_to_piece(ledger: &mut Ledger, objects: &Objects, piece: Entity, held: Ap
 }
 
 /// Brings `entity`'s rules in its context's rule set to what its
-/// components say.
+/// components say, together with the rules of any other entity holding
+/// its node ([`Holder`]).
 fn apply(
     ledger: &mut Ledger,
     contexts: &mut Query<&mut CollisionRules>,
@@ -380,24 +386,23 @@ fn apply(
         Option<&OneWaySurface>,
     ),
 ) {
-    let place = objects.place_of(entity);
+    let placed = objects.placed(entity);
     let wants = group.is_some() || personal.is_some() || specific.is_some() || one_way.is_some();
-    let old = ledger.applied.remove(&entity);
-    if let Some(old) = &old {
-        ledger.unname(entity, old);
-    }
     // What the rule set holds from this entity at its place now.
-    let before = match old {
-        Some(old) if wants && place == Some(old.place) => Some(old),
+    let before = match ledger.take_applied(entity) {
+        Some(old) if wants && placed.map(|(place, _)| place) == Some(old.place) => Some(old),
         Some(old) => {
+            // Its rules leave that place; other holders' stay.
             if let Ok(mut rules) = contexts.get_mut(old.place.0) {
-                clear(rules.rules_mut(), &old);
+                let was = ledger.node_rules(old.place, Some((entity, &old)));
+                let now = ledger.node_rules(old.place, None);
+                was.write(&now, rules.rules_mut(), old.place.1);
             }
             None
         }
         None => None,
     };
-    let Some(place) = place.filter(|_| wants) else {
+    let Some((place, holder)) = placed.filter(|_| wants) else {
         return;
     };
     let Ok(mut rules) = contexts.get_mut(place.0) else {
@@ -405,27 +410,7 @@ fn apply(
         ledger.waiting.insert(entity);
         return;
     };
-    let before = before.unwrap_or(Applied {
-        place,
-        group: None,
-        personal: CollisionRule::Defer,
-        one_way: None,
-        specific: Vec::new(),
-    });
-    let (context, node) = place;
-    let set = rules.rules_mut();
-    let group = group.map(|g| g.0);
-    if before.group != group {
-        set.set_group(node, group);
-    }
-    let personal = personal.map_or(CollisionRule::Defer, |p| p.0);
-    if before.personal != personal {
-        set.set_personal(node, personal);
-    }
-    let one_way = one_way.map(|w| w.0);
-    if before.one_way != one_way {
-        set.set_one_way(node, one_way);
-    }
+    let context = place.0;
     let mut entries = Vec::new();
     for SpecificEntry {
         other: target,
@@ -438,12 +423,13 @@ fn apply(
             // Despawned: its entries went with it.
             continue;
         }
-        let at = objects.place_of(target);
-        ledger.name(entity, target, at);
+        let at = objects.placed(target);
+        ledger.name(entity, target, at.map(|(place, _)| place));
         match at {
-            Some((c, node)) if c == context => entries.push(AppliedEntry {
+            Some(((c, node), holds)) if c == context => entries.push(AppliedEntry {
                 target,
                 node,
+                holds,
                 rule,
                 until,
                 setting,
@@ -459,36 +445,25 @@ fn apply(
     // ([`follow_tears`]) stays until the tear's message names the piece in
     // the components: a cut made in `Update` sends it only with the next
     // writeback, and the piece steps before.
-    for &entry in &before.specific {
+    for &entry in before.iter().flat_map(|b| &b.specific) {
         let named = entries.iter().any(|e| e.target == entry.target);
         if !named && objects.awaits_its_tear_message(entry.target) {
             ledger.name(entity, entry.target, objects.place_of(entry.target));
             entries.push(entry);
         }
     }
-    for old in &before.specific {
-        if !entries.iter().any(|e| e.node == old.node) {
-            set.remove_specific(node, old.node);
-        }
-    }
-    for &entry in &entries {
-        if !before.specific.contains(&entry) {
-            match entry.until {
-                Some(until) => set.set_specific_until(node, entry.node, entry.rule, until),
-                None => set.set_specific(node, entry.node, entry.rule),
-            }
-        }
-    }
-    ledger.note_applied(
-        entity,
-        Applied {
-            place,
-            group,
-            personal,
-            one_way,
-            specific: entries,
-        },
-    );
+    let now = Applied {
+        place,
+        holder,
+        group: group.map(|g| g.0),
+        personal: personal.map_or(CollisionRule::Defer, |p| p.0),
+        one_way: one_way.map(|w| w.0),
+        specific: entries,
+    };
+    let was = ledger.node_rules(place, before.as_ref().map(|b| (entity, b)));
+    let will = ledger.node_rules(place, Some((entity, &now)));
+    was.write(&will, rules.rules_mut(), place.1);
+    ledger.note_applied(entity, now);
 }
 
 /// Entries with an end that the hooks ended this frame leave their
@@ -497,7 +472,7 @@ fn apply(
 /// with an end are looked at.
 pub(crate) fn drop_ended_entries(
     mut ledger: ResMut<Ledger>,
-    contexts: Query<&CollisionRules>,
+    mut contexts: Query<&mut CollisionRules>,
     mut specific: Query<&mut SpecificRules>,
 ) {
     if ledger.ending.is_empty() {
@@ -507,24 +482,41 @@ pub(crate) fn drop_ended_entries(
     let mut ending: Vec<Entity> = ledger.ending.iter().copied().collect();
     ending.sort_unstable();
     for entity in ending {
-        let Some(applied) = ledger.applied.get_mut(&entity) else {
+        let Some(place) = ledger.applied.get(&entity).map(|a| a.place) else {
             ledger.ending.remove(&entity);
             continue;
         };
-        let Ok(rules) = contexts.get(applied.place.0) else {
+        let Ok(mut rules) = contexts.get_mut(place.0) else {
             continue;
         };
-        let (set, node) = (rules.rules(), applied.place.1);
-        let mut ended = Vec::new();
-        applied.specific.retain(|entry| {
-            let gone = entry.until.is_some() && set.specific_until(node, entry.node).is_none();
-            if gone {
-                ended.push(*entry);
+        // Only the entries the rule set holds run: one hidden under another
+        // holder's entry about the same node starts when it shows.
+        let shown = ledger.node_rules(place, None);
+        let set = rules.rules();
+        let ended: Vec<AppliedEntry> = ledger.applied[&entity]
+            .specific
+            .iter()
+            .filter(|&e| {
+                e.until.is_some()
+                    && shown.specific.contains(e)
+                    && set.specific_until(place.1, e.node).is_none()
+            })
+            .copied()
+            .collect();
+        if let Some(applied) = ledger.applied.get_mut(&entity) {
+            applied.specific.retain(|e| !ended.contains(e));
+            if !applied.specific.iter().any(|e| e.until.is_some()) {
+                ledger.ending.remove(&entity);
             }
-            !gone
-        });
-        if !applied.specific.iter().any(|e| e.until.is_some()) {
-            ledger.ending.remove(&entity);
+        }
+        if !ended.is_empty() && ledger.is_shared(place) {
+            // Another holder's entry about the same node shows now.
+            let now = ledger.node_rules(place, None);
+            for entry in &ended {
+                if let Some(next) = now.entry(entry.node) {
+                    next.set(rules.rules_mut(), place.1);
+                }
+            }
         }
         for entry in ended {
             ledger.unname_target(entity, entry.target);
@@ -536,16 +528,5 @@ pub(crate) fn drop_ended_entries(
                 }
             }
         }
-    }
-}
-
-/// Takes back what `applied` gave.
-fn clear(set: &mut CollisionRuleSet, applied: &Applied) {
-    let node = applied.place.1;
-    set.set_group(node, None);
-    set.set_personal(node, CollisionRule::Defer);
-    set.set_one_way(node, None);
-    for entry in &applied.specific {
-        set.remove_specific(node, entry.node);
     }
 }

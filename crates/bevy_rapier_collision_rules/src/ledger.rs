@@ -4,16 +4,33 @@
 
 use std::collections::{HashMap, HashSet};
 
-use crate::collision_rules::{CollisionGroup, CollisionRule, Node, OneWay, Until};
+use crate::collision_rules::{
+    CollisionGroup, CollisionRule, CollisionRuleSet, Node, OneWay, Until,
+};
 use bevy::prelude::*;
 
 /// Where an entity's rules live: its context entity and its node there.
 pub(crate) type Place = (Entity, Node);
 
+/// How an entity holds its node. Two entities can hold one: a
+/// `SoftBodyCluster` entity holds its proxy body as its own, and the soft
+/// body entity of a piece whose root that proxy became holds it as its
+/// root. Before the tear the cluster's colliders read the cluster's rules,
+/// then the soft body's: the first holder's rules come first
+/// (`docs/bevy.md`, "A cluster's own rules").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum Holder {
+    /// The entity's own body (a rigid body or a cluster's proxy) or collider.
+    Own,
+    /// The root body of the entity's soft body.
+    SoftRoot,
+}
+
 /// The rules one entity's components gave, as last applied.
 #[derive(Clone, Debug)]
 pub(crate) struct Applied {
     pub(crate) place: Place,
+    pub(crate) holder: Holder,
     pub(crate) group: Option<CollisionGroup>,
     pub(crate) personal: CollisionRule,
     pub(crate) one_way: Option<OneWay>,
@@ -27,6 +44,9 @@ pub(crate) struct AppliedEntry {
     pub(crate) target: Entity,
     /// Its node when the entry was set.
     pub(crate) node: Node,
+    /// How it holds that node: of two entries of one entity about one
+    /// node, the one about the node's first holder is the one set.
+    pub(crate) holds: Holder,
     pub(crate) rule: CollisionRule,
     /// The end as the component gave it (the count runs in the rule set).
     pub(crate) until: Option<Until>,
@@ -47,7 +67,11 @@ pub(crate) struct Named {
 /// The plugin's book of applied rules.
 #[derive(Resource, Debug, Default)]
 pub(crate) struct Ledger {
+    /// What each entity's components gave: read it here, change it
+    /// through the methods, which keep [`Ledger::at`] in step.
     pub(crate) applied: HashMap<Entity, Applied>,
+    /// The entities whose applied rules are at each place.
+    at: HashMap<Place, Vec<Entity>>,
     pub(crate) named: HashMap<Entity, Named>,
     /// Entities whose rules could not all be applied yet (an entry names
     /// an entity without a physics object, or the context has no rules
@@ -119,7 +143,58 @@ impl Ledger {
         if applied.specific.iter().any(|e| e.until.is_some()) {
             self.ending.insert(entity);
         }
-        self.applied.insert(entity, applied);
+        let place = applied.place;
+        if let Some(old) = self.applied.insert(entity, applied) {
+            self.leave(entity, old.place);
+        }
+        self.at.entry(place).or_default().push(entity);
+    }
+
+    /// Takes `entity`'s applied rules out of the book, and forgets what
+    /// their entries name.
+    pub(crate) fn take_applied(&mut self, entity: Entity) -> Option<Applied> {
+        let applied = self.applied.remove(&entity)?;
+        self.leave(entity, applied.place);
+        self.unname(entity, &applied);
+        Some(applied)
+    }
+
+    /// Notes that `entity`'s applied rules are at `place` now (the rule
+    /// set moved them there).
+    pub(crate) fn move_applied(&mut self, entity: Entity, place: Place) {
+        if let Some(mut applied) = self.applied.remove(&entity) {
+            applied.place = place;
+            self.note_applied(entity, applied);
+        }
+    }
+
+    fn leave(&mut self, entity: Entity, place: Place) {
+        if let Some(holders) = self.at.get_mut(&place) {
+            holders.retain(|&e| e != entity);
+            if holders.is_empty() {
+                self.at.remove(&place);
+            }
+        }
+    }
+
+    /// What the rule set holds at `place` from the book, with `extra`'s
+    /// rules there too (an entity out of the book while it is applied).
+    pub(crate) fn node_rules(&self, place: Place, extra: Option<(Entity, &Applied)>) -> NodeRules {
+        let mut holders: Vec<(Entity, &Applied)> = self
+            .at
+            .get(&place)
+            .into_iter()
+            .flatten()
+            .filter_map(|&e| Some((e, self.applied.get(&e)?)))
+            .chain(extra)
+            .collect();
+        holders.sort_by_key(|&(entity, applied)| (applied.holder, entity));
+        NodeRules::over(holders.into_iter().map(|(_, applied)| applied))
+    }
+
+    /// Whether another entity than `entity` holds rules at `place`.
+    pub(crate) fn is_shared(&self, place: Place) -> bool {
+        self.at.get(&place).is_some_and(|holders| holders.len() > 1)
     }
 
     /// Notes that `entity`'s entries name their targets, each at `place`.
@@ -127,5 +202,90 @@ impl Ledger {
         let named = self.named.entry(target).or_default();
         named.at = place;
         named.by.insert(entity);
+    }
+}
+
+/// The rules at one node, as the entities holding it give them together:
+/// each setting from the first holder that gives it, and of the entries
+/// about one node the first holder's (`docs/bevy.md`, "A cluster's own
+/// rules"). With one holder, its rules.
+#[derive(Debug, PartialEq)]
+pub(crate) struct NodeRules {
+    pub(crate) group: Option<CollisionGroup>,
+    pub(crate) personal: CollisionRule,
+    pub(crate) one_way: Option<OneWay>,
+    pub(crate) specific: Vec<AppliedEntry>,
+}
+
+impl NodeRules {
+    /// The rules of `holders`, first holder first.
+    fn over<'a>(holders: impl Iterator<Item = &'a Applied>) -> NodeRules {
+        let mut rules = NodeRules {
+            group: None,
+            personal: CollisionRule::Defer,
+            one_way: None,
+            specific: Vec::new(),
+        };
+        for applied in holders {
+            rules.group = rules.group.or(applied.group);
+            if !rules.personal.is_decided() {
+                rules.personal = applied.personal;
+            }
+            rules.one_way = rules.one_way.or(applied.one_way);
+            let before = rules.specific.len();
+            for &entry in &applied.specific {
+                match rules.specific.iter().position(|e| e.node == entry.node) {
+                    None => rules.specific.push(entry),
+                    // This holder's own two entries about one node.
+                    Some(i)
+                        if i >= before
+                            && (entry.holds, entry.target)
+                                < (rules.specific[i].holds, rules.specific[i].target) =>
+                    {
+                        rules.specific[i] = entry;
+                    }
+                    Some(_) => {}
+                }
+            }
+        }
+        rules
+    }
+
+    /// The entry about `node`, if any.
+    pub(crate) fn entry(&self, node: Node) -> Option<&AppliedEntry> {
+        self.specific.iter().find(|e| e.node == node)
+    }
+
+    /// Edits `set` at `node` from these rules to `to`.
+    pub(crate) fn write(&self, to: &NodeRules, set: &mut CollisionRuleSet, node: Node) {
+        if self.group != to.group {
+            set.set_group(node, to.group);
+        }
+        if self.personal != to.personal {
+            set.set_personal(node, to.personal);
+        }
+        if self.one_way != to.one_way {
+            set.set_one_way(node, to.one_way);
+        }
+        for old in &self.specific {
+            if to.entry(old.node).is_none() {
+                set.remove_specific(node, old.node);
+            }
+        }
+        for entry in &to.specific {
+            if !self.specific.contains(entry) {
+                entry.set(set, node);
+            }
+        }
+    }
+}
+
+impl AppliedEntry {
+    /// Sets the entry in `set`, held by `node`.
+    pub(crate) fn set(&self, set: &mut CollisionRuleSet, node: Node) {
+        match self.until {
+            Some(until) => set.set_specific_until(node, self.node, self.rule, until),
+            None => set.set_specific(node, self.node, self.rule),
+        }
     }
 }

@@ -9,9 +9,10 @@ use bevy::ecs::system::RunSystemOnce;
 use bevy::prelude::*;
 use bevy_rapier::plugin::context::RapierRigidBodySet;
 use bevy_rapier::prelude::*;
+use bevy_rapier::rapier::prelude::RigidBodyHandle;
 use bevy_rapier_collision_rules::prelude::*;
 
-use super::scene::{Sim, floor};
+use super::scene::{Sim, cuboid, floor};
 
 const FRAMES: usize = 90;
 
@@ -120,7 +121,7 @@ fn bar() -> SoftBody {
 enum Split {
     /// `cut_soft_body` across x = 0.1 (or the x given).
     Cut,
-    /// `tear_soft_body` along the edges across x = 0.
+    /// `tear_soft_body` along the edges across x = 0.1 (or the x given).
     Tear,
 }
 
@@ -150,7 +151,7 @@ fn split_at(sim: &mut Sim, soft: Entity, how: Split, x: f32) -> Option<Vec<Entit
                     Split::Cut => context.cut_soft_body(&mut commands, soft, &blade),
                     Split::Tear => {
                         let body = context.rigidbody_set.soft_body(soft).unwrap();
-                        let left = |v: u32| body.particle_position(v as usize).x < 0.0;
+                        let left = |v: u32| body.particle_position(v as usize).x < x;
                         let edges: Vec<u32> = (0..body.edges().len() as u32)
                             .filter(|&e| {
                                 let [a, b] = body.edges()[e as usize].vertices;
@@ -248,7 +249,7 @@ fn the_pieces_of_a_cut_or_a_tear_keep_the_soft_bodys_rules() {
 }
 
 /// The root body of `soft`'s soft body.
-fn root_of(sim: &mut Sim, soft: Entity) -> bevy_rapier::rapier::prelude::RigidBodyHandle {
+fn root_of(sim: &mut Sim, soft: Entity) -> RigidBodyHandle {
     let context = sim.context();
     let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
     set.soft_body(soft).expect("a soft body entity").root_body()
@@ -518,6 +519,156 @@ fn a_rule_removed_in_the_frame_of_a_split_stays_off_every_piece() {
     assert!(
         moved > 0 || cfg!(feature = "dim3"),
         "no split gave the bar's root to a piece"
+    );
+}
+
+/// The particles of `soft`'s soft body past x = 0.3 towards its right or
+/// left end.
+fn particles_at_end(sim: &mut Sim, soft: Entity, right: bool) -> Vec<u32> {
+    let context = sim.context();
+    let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
+    let body = set.soft_body(soft).expect("a soft body entity");
+    (0..body.particle_positions().count() as u32)
+        .filter(|&v| {
+            let x = body.particle_position(v as usize).x;
+            if right { x > 0.3 } else { x < -0.3 }
+        })
+        .collect()
+}
+
+/// The soft body entity whose soft body has `root` as its root body.
+fn entity_rooted_at(sim: &mut Sim, root: RigidBodyHandle) -> Option<Entity> {
+    let context = sim.context();
+    let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
+    let (handle, _) = set
+        .soft_bodies
+        .iter()
+        .find(|(_, body)| body.root_body() == root)?;
+    set.soft_body_entity(handle)
+}
+
+/// A tear that splits a ruled `SoftBodyCluster` wholly off a bar gives the
+/// piece the cluster's proxy as its root (rapier 0.36.1): the cluster's
+/// entity and the piece's then describe one node. The cluster's rules come
+/// first there and the piece's (the bar's, copied by bevy_rapier) under
+/// them, as the cluster's colliders read them before the tear; a change or
+/// a removal on either entity changes its own part alone (`docs/bevy.md`,
+/// "A cluster's own rules").
+#[test]
+fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
+    let mut found = 0;
+    for (right, x) in [
+        (true, 0.4),
+        (false, -0.4),
+        (true, 0.1),
+        (false, -0.1),
+        (false, 0.4),
+        (true, -0.4),
+    ] {
+        let case = format!(
+            "cluster at the {} end, torn across x = {x}",
+            if right { "right" } else { "left" }
+        );
+        let mut sim = Sim::new();
+        let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
+        let f = sim.spawn(floor());
+        let far = sim.spawn((Transform::from_xyz(100.0, 0.0, 0.0), cuboid(0.5, 0.5, 0.5)));
+        let (bars, clusters, floors) = {
+            let mut table = sim.table();
+            let groups = (
+                table.create_group(),
+                table.create_group(),
+                table.create_group(),
+            );
+            table.set_group_rule(groups.0, groups.2, NoPair);
+            table.set_group_rule(groups.1, groups.2, NoPair);
+            groups
+        };
+        sim.entity_mut(f).insert(RuleGroup(floors));
+        sim.entity_mut(bar_entity)
+            .insert((RuleGroup(bars), SpecificRules::new().with(far, NoPair)));
+        sim.run(1);
+        let end = particles_at_end(&mut sim, bar_entity, right);
+        let cluster_rules = || {
+            (
+                RuleGroup(clusters),
+                SpecificRules::new().with(far, NoResponse),
+            )
+        };
+        let cluster = sim.spawn((SoftBodyCluster::new(bar_entity, end), cluster_rules()));
+        sim.run(1);
+        let proxy = sim.body(cluster);
+        split_at(&mut sim, bar_entity, Split::Tear, x).expect("the bar tears");
+        // bevy_rapier gives the piece its components at the next writeback.
+        sim.run(2);
+        let Some(piece) = entity_rooted_at(&mut sim, proxy) else {
+            continue;
+        };
+        found += 1;
+        let far_node = sim.app.world().get::<RapierColliderHandle>(far).unwrap().0;
+        let at_proxy = |sim: &mut Sim| {
+            let rules = sim.rules().rules();
+            (rules.group(proxy), rules.specific(proxy, far_node))
+        };
+        let carried = sim.app.world().get::<RuleGroup>(piece).map(|g| g.0);
+        assert_eq!(
+            carried,
+            Some(bars),
+            "{case}: the piece's entity carries the bar's group"
+        );
+        sim.run(FRAMES);
+        assert_eq!(
+            at_proxy(&mut sim),
+            (Some(clusters), NoResponse),
+            "{case}: the cluster's rules hold at its proxy, the piece's root"
+        );
+        let all: Vec<Entity> = {
+            let context = sim.context();
+            let set = sim.app.world().get::<RapierRigidBodySet>(context).unwrap();
+            set.soft_bodies
+                .iter()
+                .filter_map(|(h, _)| set.soft_body_entity(h))
+                .collect()
+        };
+        for soft in all {
+            let low = lowest(&mut sim, soft);
+            assert!(
+                low < -1.0,
+                "{case}: {soft:?} falls through the floor both groups ignore: lowest particle at {low}"
+            );
+        }
+        // Without the cluster's rules, the piece's (the bar's) hold.
+        sim.entity_mut(cluster)
+            .remove::<(RuleGroup, SpecificRules)>();
+        sim.run(1);
+        assert_eq!(
+            at_proxy(&mut sim),
+            (Some(bars), NoPair),
+            "{case}: the cluster's rules removed"
+        );
+        // The cluster's come back over them, and the piece's go.
+        sim.entity_mut(cluster).insert(cluster_rules());
+        sim.run(1);
+        assert_eq!(
+            at_proxy(&mut sim),
+            (Some(clusters), NoResponse),
+            "{case}: the cluster's rules given again"
+        );
+        sim.entity_mut(piece).remove::<(RuleGroup, SpecificRules)>();
+        sim.run(1);
+        assert_eq!(
+            at_proxy(&mut sim),
+            (Some(clusters), NoResponse),
+            "{case}: the piece's rules removed"
+        );
+        sim.entity_mut(cluster)
+            .remove::<(RuleGroup, SpecificRules)>();
+        sim.run(1);
+        assert_eq!(at_proxy(&mut sim), (None, Defer), "{case}: both removed");
+    }
+    assert!(
+        found > 0,
+        "no tear gave a piece the cluster's proxy as root"
     );
 }
 

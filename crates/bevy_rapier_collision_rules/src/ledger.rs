@@ -289,3 +289,115 @@ impl AppliedEntry {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::collision_rules::CollisionRuleSet as Table;
+    use bevy_rapier::rapier::prelude::RigidBodyHandle;
+
+    fn applied(place: Place, holder: Holder) -> Applied {
+        Applied {
+            place,
+            holder,
+            group: None,
+            personal: CollisionRule::Defer,
+            one_way: None,
+            specific: Vec::new(),
+        }
+    }
+
+    fn entry(target: Entity, node: Node, holds: Holder, rule: CollisionRule) -> AppliedEntry {
+        AppliedEntry {
+            target,
+            node,
+            holds,
+            rule,
+            until: None,
+            setting: 0,
+        }
+    }
+
+    /// The cluster's entity comes first at a node it shares with a piece,
+    /// whatever the order they were noted in; the piece's settings fill in
+    /// where the cluster gives none, and its part goes with it.
+    #[test]
+    fn the_first_holder_s_settings_come_first_and_the_others_fill_in() {
+        let mut table = Table::default();
+        let (mine, theirs) = (table.create_group(), table.create_group());
+        let context = Entity::from_raw_u32(1).unwrap();
+        let node = Node::from(RigidBodyHandle::from_raw_parts(3, 0));
+        let (other, far) = (
+            Node::from(RigidBodyHandle::from_raw_parts(7, 0)),
+            Node::from(RigidBodyHandle::from_raw_parts(9, 0)),
+        );
+        let place = (context, node);
+        let (cluster, piece, named) = (
+            Entity::from_raw_u32(10).unwrap(),
+            Entity::from_raw_u32(5).unwrap(),
+            Entity::from_raw_u32(20).unwrap(),
+        );
+        let mut ledger = Ledger::default();
+        let mut held = applied(place, Holder::SoftRoot);
+        held.group = Some(theirs);
+        held.personal = CollisionRule::NoPair;
+        held.specific = vec![
+            entry(named, other, Holder::Own, CollisionRule::NoPair),
+            entry(named, far, Holder::Own, CollisionRule::NoContacts),
+        ];
+        ledger.note_applied(piece, held);
+        let mut own = applied(place, Holder::Own);
+        own.group = Some(mine);
+        own.specific = vec![entry(named, other, Holder::Own, CollisionRule::NoResponse)];
+        let rules = ledger.node_rules(place, Some((cluster, &own)));
+        assert_eq!(rules.group, Some(mine));
+        assert_eq!(rules.personal, CollisionRule::NoPair);
+        assert_eq!(
+            rules.entry(other).map(|e| e.rule),
+            Some(CollisionRule::NoResponse)
+        );
+        assert_eq!(
+            rules.entry(far).map(|e| e.rule),
+            Some(CollisionRule::NoContacts)
+        );
+        ledger.note_applied(cluster, own);
+        assert!(ledger.is_shared(place));
+        ledger.take_applied(piece).expect("the piece's part");
+        let rules = ledger.node_rules(place, None);
+        assert_eq!(
+            (rules.group, rules.personal),
+            (Some(mine), CollisionRule::Defer)
+        );
+        assert_eq!(rules.entry(far), None);
+        assert!(!ledger.is_shared(place));
+    }
+
+    /// Of one holder's two entries about one node, the one naming the
+    /// node's own holder is set, in either order.
+    #[test]
+    fn of_one_holder_s_two_entries_about_a_node_the_one_about_its_own_holder_wins() {
+        let context = Entity::from_raw_u32(1).unwrap();
+        let (node, shared) = (
+            Node::from(RigidBodyHandle::from_raw_parts(3, 0)),
+            Node::from(RigidBodyHandle::from_raw_parts(4, 0)),
+        );
+        let (cluster, piece) = (
+            Entity::from_raw_u32(10).unwrap(),
+            Entity::from_raw_u32(5).unwrap(),
+        );
+        let about_cluster = entry(cluster, shared, Holder::Own, CollisionRule::NoResponse);
+        let about_piece = entry(piece, shared, Holder::SoftRoot, CollisionRule::NoPair);
+        for specific in [
+            vec![about_cluster, about_piece],
+            vec![about_piece, about_cluster],
+        ] {
+            let mut namer = applied((context, node), Holder::Own);
+            namer.specific = specific;
+            let rules = Ledger::default().node_rules(
+                (context, node),
+                Some((Entity::from_raw_u32(2).unwrap(), &namer)),
+            );
+            assert_eq!(rules.specific, [about_cluster]);
+        }
+    }
+}

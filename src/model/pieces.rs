@@ -75,9 +75,10 @@ impl CollisionRuleSet {
         if self.is_named(from) {
             let holders: Vec<(Node, CollisionRule)> = self.entries_about(from).collect();
             for (holder, rule) in holders {
-                // An entry about the cluster itself came before the one about
-                // the source in its colliders' chain: it stays.
-                if !(own && self.specific(holder, to).is_decided()) {
+                // An entry about a cluster proxy that became the root came
+                // before the one about the source in its colliders' chains:
+                // it stays (a fresh root has none).
+                if !self.specific(holder, to).is_decided() {
                     self.set_specific_keeping_end(holder, to, rule, (holder, from));
                 }
             }

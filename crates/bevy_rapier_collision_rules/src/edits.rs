@@ -498,7 +498,7 @@ pub(crate) fn drop_ended_entries(
             .iter()
             .filter(|&e| {
                 e.until.is_some()
-                    && shown.specific.contains(e)
+                    && shown.shows(entity, e)
                     && set.specific_until(place.1, e.node).is_none()
             })
             .copied()
@@ -509,8 +509,10 @@ pub(crate) fn drop_ended_entries(
                 ledger.ending.remove(&entity);
             }
         }
-        if !ended.is_empty() && ledger.is_shared(place) {
-            // Another holder's entry about the same node shows now.
+        if !ended.is_empty() {
+            // An entry about the same node that the ended one hid (another
+            // holder's, or this entity's about the node's other holder)
+            // shows now.
             let now = ledger.node_rules(place, None);
             for entry in &ended {
                 if let Some(next) = now.entry(entry.node) {

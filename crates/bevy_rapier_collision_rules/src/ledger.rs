@@ -163,6 +163,7 @@ impl Ledger {
     /// set moved them there).
     pub(crate) fn move_applied(&mut self, entity: Entity, place: Place) {
         if let Some(mut applied) = self.applied.remove(&entity) {
+            self.leave(entity, applied.place);
             applied.place = place;
             self.note_applied(entity, applied);
         }
@@ -189,12 +190,7 @@ impl Ledger {
             .chain(extra)
             .collect();
         holders.sort_by_key(|&(entity, applied)| (applied.holder, entity));
-        NodeRules::over(holders.into_iter().map(|(_, applied)| applied))
-    }
-
-    /// Whether another entity than `entity` holds rules at `place`.
-    pub(crate) fn is_shared(&self, place: Place) -> bool {
-        self.at.get(&place).is_some_and(|holders| holders.len() > 1)
+        NodeRules::over(holders)
     }
 
     /// Notes that `entity`'s entries name their targets, each at `place`.
@@ -214,19 +210,26 @@ pub(crate) struct NodeRules {
     pub(crate) group: Option<CollisionGroup>,
     pub(crate) personal: CollisionRule,
     pub(crate) one_way: Option<OneWay>,
-    pub(crate) specific: Vec<AppliedEntry>,
+    pub(crate) specific: Vec<ShownEntry>,
+}
+
+/// An entry the rule set holds at a node, and the entity that gave it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ShownEntry {
+    pub(crate) by: Entity,
+    pub(crate) entry: AppliedEntry,
 }
 
 impl NodeRules {
     /// The rules of `holders`, first holder first.
-    fn over<'a>(holders: impl Iterator<Item = &'a Applied>) -> NodeRules {
+    fn over(holders: Vec<(Entity, &Applied)>) -> NodeRules {
         let mut rules = NodeRules {
             group: None,
             personal: CollisionRule::Defer,
             one_way: None,
             specific: Vec::new(),
         };
-        for applied in holders {
+        for (by, applied) in holders {
             rules.group = rules.group.or(applied.group);
             if !rules.personal.is_decided() {
                 rules.personal = applied.personal;
@@ -234,15 +237,23 @@ impl NodeRules {
             rules.one_way = rules.one_way.or(applied.one_way);
             let before = rules.specific.len();
             for &entry in &applied.specific {
-                match rules.specific.iter().position(|e| e.node == entry.node) {
-                    None => rules.specific.push(entry),
+                let shown = ShownEntry { by, entry };
+                let at = rules
+                    .specific
+                    .iter()
+                    .position(|s| s.entry.node == entry.node);
+                match at {
+                    None => rules.specific.push(shown),
                     // This holder's own two entries about one node.
                     Some(i)
                         if i >= before
                             && (entry.holds, entry.target)
-                                < (rules.specific[i].holds, rules.specific[i].target) =>
+                                < (
+                                    rules.specific[i].entry.holds,
+                                    rules.specific[i].entry.target,
+                                ) =>
                     {
-                        rules.specific[i] = entry;
+                        rules.specific[i] = shown;
                     }
                     Some(_) => {}
                 }
@@ -253,7 +264,17 @@ impl NodeRules {
 
     /// The entry about `node`, if any.
     pub(crate) fn entry(&self, node: Node) -> Option<&AppliedEntry> {
-        self.specific.iter().find(|e| e.node == node)
+        self.specific
+            .iter()
+            .map(|s| &s.entry)
+            .find(|e| e.node == node)
+    }
+
+    /// Whether the rule set holds `entry` as `by`'s.
+    pub(crate) fn shows(&self, by: Entity, entry: &AppliedEntry) -> bool {
+        self.specific
+            .iter()
+            .any(|s| s.by == by && s.entry == *entry)
     }
 
     /// Edits `set` at `node` from these rules to `to`.
@@ -268,13 +289,13 @@ impl NodeRules {
             set.set_one_way(node, to.one_way);
         }
         for old in &self.specific {
-            if to.entry(old.node).is_none() {
-                set.remove_specific(node, old.node);
+            if to.entry(old.entry.node).is_none() {
+                set.remove_specific(node, old.entry.node);
             }
         }
-        for entry in &to.specific {
-            if !self.specific.contains(entry) {
-                entry.set(set, node);
+        for shown in &to.specific {
+            if !self.specific.iter().any(|s| s.entry == shown.entry) {
+                shown.entry.set(set, node);
             }
         }
     }
@@ -361,7 +382,13 @@ mod tests {
             Some(CollisionRule::NoContacts)
         );
         ledger.note_applied(cluster, own);
-        assert!(ledger.is_shared(place));
+        let givers: Vec<Entity> = ledger
+            .node_rules(place, None)
+            .specific
+            .iter()
+            .map(|s| s.by)
+            .collect();
+        assert_eq!(givers, [cluster, piece]);
         ledger.take_applied(piece).expect("the piece's part");
         let rules = ledger.node_rules(place, None);
         assert_eq!(
@@ -369,7 +396,11 @@ mod tests {
             (Some(mine), CollisionRule::Defer)
         );
         assert_eq!(rules.entry(far), None);
-        assert!(!ledger.is_shared(place));
+        // Moved elsewhere, the cluster's rules leave the place.
+        let elsewhere = (context, far);
+        ledger.move_applied(cluster, elsewhere);
+        assert_eq!(ledger.node_rules(place, None).group, None);
+        assert_eq!(ledger.node_rules(elsewhere, None).group, Some(mine));
     }
 
     /// Of one holder's two entries about one node, the one naming the
@@ -397,7 +428,8 @@ mod tests {
                 (context, node),
                 Some((Entity::from_raw_u32(2).unwrap(), &namer)),
             );
-            assert_eq!(rules.specific, [about_cluster]);
+            let set: Vec<AppliedEntry> = rules.specific.iter().map(|s| s.entry).collect();
+            assert_eq!(set, [about_cluster]);
         }
     }
 }

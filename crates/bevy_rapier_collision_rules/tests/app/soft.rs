@@ -547,6 +547,17 @@ fn entity_rooted_at(sim: &mut Sim, root: RigidBodyHandle) -> Option<Entity> {
     set.soft_body_entity(handle)
 }
 
+/// Clusters at the right or left end of the bar, torn across x: those that
+/// split the cluster's end off give the piece the cluster's proxy as root.
+const CLUSTER_TEARS: [(bool, f32); 6] = [
+    (true, 0.4),
+    (false, -0.4),
+    (true, 0.1),
+    (false, -0.1),
+    (false, 0.4),
+    (true, -0.4),
+];
+
 /// A tear that splits a ruled `SoftBodyCluster` wholly off a bar gives the
 /// piece the cluster's proxy as its root (rapier 0.36.1): the cluster's
 /// entity and the piece's then describe one node. The cluster's rules come
@@ -557,14 +568,7 @@ fn entity_rooted_at(sim: &mut Sim, root: RigidBodyHandle) -> Option<Entity> {
 #[test]
 fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
     let mut found = 0;
-    for (right, x) in [
-        (true, 0.4),
-        (false, -0.4),
-        (true, 0.1),
-        (false, -0.1),
-        (false, 0.4),
-        (true, -0.4),
-    ] {
+    for (right, x) in CLUSTER_TEARS {
         let case = format!(
             "cluster at the {} end, torn across x = {x}",
             if right { "right" } else { "left" }
@@ -585,8 +589,11 @@ fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
             groups
         };
         sim.entity_mut(f).insert(RuleGroup(floors));
-        sim.entity_mut(bar_entity)
-            .insert((RuleGroup(bars), SpecificRules::new().with(far, NoPair)));
+        sim.entity_mut(bar_entity).insert((
+            RuleGroup(bars),
+            PersonalRule(NoPair),
+            SpecificRules::new().with(far, NoPair),
+        ));
         sim.run(1);
         let end = particles_at_end(&mut sim, bar_entity, right);
         let cluster_rules = || {
@@ -608,7 +615,12 @@ fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
         let far_node = sim.app.world().get::<RapierColliderHandle>(far).unwrap().0;
         let at_proxy = |sim: &mut Sim| {
             let rules = sim.rules().rules();
-            (rules.group(proxy), rules.specific(proxy, far_node))
+            let group = rules.group(proxy);
+            (
+                group,
+                rules.personal(proxy),
+                rules.specific(proxy, far_node),
+            )
         };
         let carried = sim.app.world().get::<RuleGroup>(piece).map(|g| g.0);
         assert_eq!(
@@ -619,8 +631,8 @@ fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
         sim.run(FRAMES);
         assert_eq!(
             at_proxy(&mut sim),
-            (Some(clusters), NoResponse),
-            "{case}: the cluster's rules hold at its proxy, the piece's root"
+            (Some(clusters), NoPair, NoResponse),
+            "{case}: the cluster's rules hold at its proxy, the piece's root, over the piece's"
         );
         let all: Vec<Entity> = {
             let context = sim.context();
@@ -641,30 +653,46 @@ fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
         sim.entity_mut(cluster)
             .remove::<(RuleGroup, SpecificRules)>();
         sim.run(1);
+        let removed = at_proxy(&mut sim);
         assert_eq!(
-            at_proxy(&mut sim),
-            (Some(bars), NoPair),
+            removed,
+            (Some(bars), NoPair, NoPair),
             "{case}: the cluster's rules removed"
         );
-        // The cluster's come back over them, and the piece's go.
+        // The cluster's come back over them; the piece's change, then go.
         sim.entity_mut(cluster).insert(cluster_rules());
         sim.run(1);
+        let again = at_proxy(&mut sim);
         assert_eq!(
-            at_proxy(&mut sim),
-            (Some(clusters), NoResponse),
+            again,
+            (Some(clusters), NoPair, NoResponse),
             "{case}: the cluster's rules given again"
         );
-        sim.entity_mut(piece).remove::<(RuleGroup, SpecificRules)>();
+        sim.entity_mut(piece).insert(RuleGroup(floors));
         sim.run(1);
+        let changed = at_proxy(&mut sim);
         assert_eq!(
-            at_proxy(&mut sim),
-            (Some(clusters), NoResponse),
+            changed,
+            (Some(clusters), NoPair, NoResponse),
+            "{case}: the piece's group changed"
+        );
+        sim.entity_mut(piece)
+            .remove::<(RuleGroup, PersonalRule, SpecificRules)>();
+        sim.run(1);
+        let gone = at_proxy(&mut sim);
+        assert_eq!(
+            gone,
+            (Some(clusters), Defer, NoResponse),
             "{case}: the piece's rules removed"
         );
         sim.entity_mut(cluster)
             .remove::<(RuleGroup, SpecificRules)>();
         sim.run(1);
-        assert_eq!(at_proxy(&mut sim), (None, Defer), "{case}: both removed");
+        assert_eq!(
+            at_proxy(&mut sim),
+            (None, Defer, Defer),
+            "{case}: both removed"
+        );
     }
     assert!(
         found > 0,
@@ -763,4 +791,164 @@ fn the_pieces_of_a_strain_tear_between_substeps_follow_the_rules() {
             );
         }
     }
+}
+
+/// After a cut that moves the torn entity's root (rapier 0.36.1 in 2D),
+/// the book holds the torn entity's rules at its new root only: removing
+/// the rule component of the piece that holds the old root takes the rule
+/// off that root.
+#[test]
+fn the_piece_holding_a_moved_root_gives_its_rule_up_with_its_component() {
+    let mut checked = 0;
+    for x in [-0.6, -0.4, -0.2, 0.2, 0.4, 0.6] {
+        let mut sim = Sim::new();
+        let bar_entity = sim.spawn((
+            Transform::from_xyz(0.0, 0.1, 0.0),
+            bar(),
+            PersonalRule(NoPair),
+        ));
+        sim.spawn(floor());
+        sim.run(1);
+        split(&mut sim, bar_entity, Split::Tear);
+        sim.run(1);
+        let root = root_of(&mut sim, bar_entity);
+        let Some(cut) = split_at(&mut sim, bar_entity, Split::Cut, x) else {
+            continue;
+        };
+        if root_of(&mut sim, bar_entity) == root {
+            continue;
+        }
+        sim.run(3);
+        let Some(piece) = cut
+            .into_iter()
+            .find(|&p| p != bar_entity && root_of(&mut sim, p) == root)
+        else {
+            continue;
+        };
+        checked += 1;
+        assert_eq!(
+            sim.rules().rules().personal(root),
+            NoPair,
+            "x = {x}: before"
+        );
+        sim.entity_mut(piece).remove::<PersonalRule>();
+        sim.run(2);
+        let personal = sim.rules().rules().personal(root);
+        assert_eq!(personal, Defer, "x = {x}: the piece's rule removed");
+    }
+    assert!(
+        checked > 0 || cfg!(feature = "dim3"),
+        "no cut moved the root"
+    );
+}
+
+/// Each frame: the rule set's entry between a proxy and a body, and two
+/// entities' components' entries about that body.
+type Frames = Vec<(CollisionRule, Option<CollisionRule>, Option<CollisionRule>)>;
+
+/// One entity with an entry about the bar and an entry with an end about
+/// the cluster: the second is set at the cluster's proxy, and once it
+/// ends the entry about the piece (the bar's, copied by bevy_rapier)
+/// shows there, as the component says.
+#[test]
+fn one_entity_s_entry_about_the_piece_shows_when_its_entry_about_the_cluster_ends() {
+    let mut found = 0;
+    for (right, x) in CLUSTER_TEARS {
+        let mut sim = Sim::new();
+        let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
+        let far = sim.spawn((Transform::from_xyz(100.0, 0.0, 0.0), cuboid(0.5, 0.5, 0.5)));
+        sim.run(1);
+        let end = particles_at_end(&mut sim, bar_entity, right);
+        let cluster = sim.spawn(SoftBodyCluster::new(bar_entity, end));
+        sim.run(1);
+        sim.entity_mut(far)
+            .insert(SpecificRules::new().with(bar_entity, NoPair).with_until(
+                cluster,
+                NoResponse,
+                Until::steps(30),
+            ));
+        sim.run(1);
+        let proxy = sim.body(cluster);
+        split_at(&mut sim, bar_entity, Split::Tear, x).expect("the bar tears");
+        sim.run(2);
+        let Some(piece) = entity_rooted_at(&mut sim, proxy) else {
+            continue;
+        };
+        found += 1;
+        let far_node = sim.app.world().get::<RapierColliderHandle>(far).unwrap().0;
+        let held = sim.rules().rules().specific(far_node, proxy);
+        assert_eq!(held, NoResponse, "x = {x}: the entry about the cluster");
+        sim.run(60);
+        let component = sim.app.world().get::<SpecificRules>(far).unwrap();
+        let (about_piece, about_cluster) = (component.get(piece), component.get(cluster));
+        assert_eq!(
+            (about_piece, about_cluster),
+            (NoPair, Defer),
+            "x = {x}: the component"
+        );
+        let held = sim.rules().rules().specific(far_node, proxy);
+        assert_eq!(held, NoPair, "x = {x}: the entry about the piece holds");
+    }
+    assert!(
+        found > 0,
+        "no tear gave a piece the cluster's proxy as root"
+    );
+}
+
+/// The cluster's and the piece's entries with an end about one body (the
+/// piece's copied from the bar): the piece's, hidden under the cluster's,
+/// does not run; when the cluster's ends, the piece's shows and starts its
+/// end, whichever entity sorts first.
+#[test]
+fn a_hidden_entry_with_an_end_starts_when_the_one_over_it_ends() {
+    let mut found = 0;
+    for (right, x) in CLUSTER_TEARS {
+        for cluster_first in [true, false] {
+            let mut sim = Sim::new();
+            let far = sim.spawn((Transform::from_xyz(100.0, 0.0, 0.0), cuboid(0.5, 0.5, 0.5)));
+            let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
+            sim.run(1);
+            if !cluster_first {
+                // A slot freed before the cluster's spawn: the cluster's
+                // entity sorts after the entities spawned fresh.
+                let spare = sim.spawn(Transform::default());
+                sim.app.world_mut().despawn(spare);
+            }
+            let end = particles_at_end(&mut sim, bar_entity, right);
+            let entry = || SpecificRules::new().with_until(far, NoPair, Until::steps(20));
+            let cluster = sim.spawn((SoftBodyCluster::new(bar_entity, end), entry()));
+            sim.entity_mut(bar_entity).insert(entry());
+            sim.run(1);
+            let proxy = sim.body(cluster);
+            split_at(&mut sim, bar_entity, Split::Tear, x).expect("the bar tears");
+            sim.run(2);
+            let Some(piece) = entity_rooted_at(&mut sim, proxy) else {
+                continue;
+            };
+            found += 1;
+            let far_node = sim.app.world().get::<RapierColliderHandle>(far).unwrap().0;
+            let mut frames: Frames = Vec::new();
+            for _ in 0..40 {
+                sim.run(1);
+                let world = sim.app.world();
+                let of = |e: Entity| world.get::<SpecificRules>(e).map(|r| r.get(far));
+                let (by_cluster, by_piece) = (of(cluster), of(piece));
+                let held = sim.rules().rules().specific(proxy, far_node);
+                frames.push((held, by_cluster, by_piece));
+            }
+            let case = format!("x = {x}, cluster first: {cluster_first}: {frames:?}");
+            let ended = frames.iter().position(|f| f.1 != Some(NoPair));
+            let ended = ended.unwrap_or_else(|| panic!("{case}: the cluster's entry never ended"));
+            assert_eq!(
+                frames[ended].2,
+                Some(NoPair),
+                "{case}: the piece's ended with it"
+            );
+            assert_eq!(frames[ended].0, NoPair, "{case}: the piece's shows");
+        }
+    }
+    assert!(
+        found > 0,
+        "no tear gave a piece the cluster's proxy as root"
+    );
 }

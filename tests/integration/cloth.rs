@@ -1,10 +1,12 @@
-//! A rigid box dropped on a pinned cloth (3D: Rapier's cloths are 3D), for
-//! each rule and each way of giving it between the box and the cloth's
-//! root body, against the box without the cloth and the cloth without the
-//! box (`docs/semantics.md`, "Soft bodies").
+//! A rigid box dropped on a pinned cloth (in 2D a rope pinned at both
+//! ends: rapier2d's soft bodies have no cloth), for each rule and each way
+//! of giving it between the box and the cloth's root body, against the box
+//! without the cloth and the cloth without the box (`docs/semantics.md`,
+//! "Soft bodies").
 
-use rapier_collision_rules::{CollisionRule, RuleHooks};
-use rapier3d::prelude::*;
+use super::rapier::prelude::*;
+use super::rules::{CollisionRule, RuleHooks};
+use super::{at, cube, pinned_sheet, pose_bits};
 
 const STEPS: usize = 120;
 
@@ -24,25 +26,15 @@ fn drop_on_cloth(
     rule: Option<(Way, CollisionRule)>,
 ) -> (Vec<u32>, Vec<u32>) {
     let mut world = PhysicsWorld::new();
-    let (n, step) = (12usize, 0.2);
-    let corners = [0, n - 1, n * (n - 1), n * n - 1].map(|i| i as u32);
-    let sheet = SoftBodyBuilder::cloth(
-        Vector::new(-1.1, 1.0, -1.1),
-        Vector::new(step, 0.0, 0.0),
-        Vector::new(0.0, 0.0, step),
-        n,
-        n,
-    )
-    .pinned_particles(corners);
+    let sheet = pinned_sheet();
     let sheet = world.insert_soft_body(sheet);
     let root = world.soft_bodies[sheet].root_body();
     if !cloth {
         world.remove_soft_body(sheet);
     }
-    let body =
-        world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 2.0, 0.0)));
+    let body = world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 2.0)));
     if boxed {
-        world.insert_collider(ColliderBuilder::cuboid(0.15, 0.15, 0.15), Some(body));
+        world.insert_collider(cube(0.15), Some(body));
     }
     let mut hooks = RuleHooks::default();
     if let Some((way, rule)) = rule {
@@ -57,7 +49,7 @@ fn drop_on_cloth(
     for _ in 0..STEPS {
         hooks.step(&mut world);
     }
-    let pose = crate::dim3::pose_bits(world.bodies[body].position());
+    let pose = pose_bits(world.bodies[body].position());
     let particles = if cloth {
         world.soft_bodies[sheet]
             .particle_positions()

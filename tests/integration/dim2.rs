@@ -51,6 +51,13 @@ pub fn soft_bar(center: Vector, half: f32) -> SoftBodyBuilder {
     SoftBodyBuilder::grid(center, Vector::new(half, 0.25), 6, 2)
 }
 
+/// A sheet at y = 1 m, 2.2 m wide, pinned at its edges: a rope pinned at
+/// both ends (rapier2d's soft bodies have no cloth; a rope is its section).
+pub fn pinned_sheet() -> SoftBodyBuilder {
+    SoftBodyBuilder::rope(Vector::new(-1.1, 1.0), Vector::new(1.1, 1.0), 12)
+        .pinned_particles([0, 11])
+}
+
 /// A blade across the line x = `x`.
 pub fn blade_at_x(x: f32) -> [Vector; 2] {
     [Vector::new(x, -10.0), Vector::new(x, 20.0)]

@@ -56,6 +56,14 @@ pub fn soft_bar(center: Vector, half: f32) -> SoftBodyBuilder {
     SoftBodyBuilder::cuboid(center, Vector::new(half, 0.25, 0.25), 6, 2, 2)
 }
 
+/// A 12x12 cloth at y = 1 m, 2.2 m wide, pinned at its corners.
+pub fn pinned_sheet() -> SoftBodyBuilder {
+    let (n, step) = (12usize, 0.2);
+    let corners = [0, n - 1, n * (n - 1), n * n - 1].map(|i| i as u32);
+    let (du, dv) = (Vector::new(step, 0.0, 0.0), Vector::new(0.0, 0.0, step));
+    SoftBodyBuilder::cloth(Vector::new(-1.1, 1.0, -1.1), du, dv, n, n).pinned_particles(corners)
+}
+
 /// A blade across the plane x = `x`.
 pub fn blade_at_x(x: f32) -> [Vector; 3] {
     [

@@ -3,7 +3,7 @@
 //! What does not depend on the dimension (the scenes included, through a
 //! few shape helpers) runs against each dimension that is on (`dim3.rs`,
 //! `dim2.rs`); the rest (allocation counts, the soak, serde round trips,
-//! the stability sweeps, meshes and voxels, cloths) is the 3D build's.
+//! the stability sweeps, meshes and voxels) is the 3D build's.
 
 /// The test files that do not depend on the dimension, mounted by `dim3.rs`
 /// and `dim2.rs` over their Rapier (each file names Rapier, the crate and
@@ -12,6 +12,8 @@ macro_rules! dimension_free_tests {
     () => {
         #[path = "boundary.rs"]
         mod boundary;
+        #[path = "cloth.rs"]
+        mod cloth;
         #[cfg(feature = "debug-render")]
         #[path = "debug_view.rs"]
         mod debug_view;
@@ -66,8 +68,6 @@ mod dim3;
 
 #[cfg(feature = "dim3")]
 mod alloc;
-#[cfg(feature = "dim3")]
-mod cloth;
 #[cfg(feature = "dim3")]
 mod determinism;
 #[cfg(feature = "dim3")]

@@ -465,38 +465,57 @@ fn edges_across_middle(world: &PhysicsWorld, body: SoftBodyHandle) -> Vec<u32> {
     edges_across(&world.soft_bodies[body], 0.0)
 }
 
-/// A bar over the ground with `rule` between the two, split after one step
-/// by `split`; every piece after the fall.
+/// A piece of a split bar after the fall: its handle, lowest particle,
+/// whether it holds the bar's rule, and its particles' bits.
+struct Piece {
+    handle: SoftBodyHandle,
+    low: f32,
+    kept: bool,
+    bits: Vec<u32>,
+}
+
+/// A bar over the ground (its top `depth` m below y = 0) with `rule`
+/// between the two, split after one step by `split`; every piece after the
+/// fall, stepped with the hooks or, without `hooked`, by plain Rapier.
 fn split_bar(
     way: Way,
     rule: CollisionRule,
+    depth: f32,
+    hooked: bool,
     split: impl Fn(&mut PhysicsWorld, SoftBodyHandle) -> Option<SoftBodyTearEvent>,
-) -> Vec<(SoftBodyHandle, f32, bool)> {
-    let (mut world, floor) = on_ground();
+) -> Vec<Piece> {
+    let mut world = PhysicsWorld::new();
+    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, depth - 0.5)));
+    world.insert_collider(slab(5.0, 0.5), Some(floor));
     let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
     let root = world.soft_bodies[bar].root_body();
     let mut hooks = RuleHooks::default();
     give(&mut hooks, way, root, floor, rule);
-    hooks.step(&mut world);
+    let mut step = |world: &mut PhysicsWorld, hooks: &mut RuleHooks| {
+        if hooked { hooks.step(world) } else { world.step() }
+    };
+    step(&mut world, &mut hooks);
     let event = split(&mut world, bar).expect("the bar splits");
     let pieces: Vec<SoftBodyHandle> = event.bodies().collect();
     assert!(pieces.len() >= 2, "the split makes pieces: {}", pieces.len());
     for _ in 0..STEPS {
-        hooks.step(&mut world);
+        step(&mut world, &mut hooks);
     }
     pieces
         .into_iter()
-        .map(|piece| {
-            let piece_root = world.soft_bodies[piece].root_body();
-            let kept = hooks.rules().shares_rules(root, piece_root)
-                || hooks.rules().specific(floor, piece_root) == rule;
-            (piece, lowest(&world, piece), kept)
+        .map(|handle| {
+            let piece_root = world.soft_bodies[handle].root_body();
+            let kept = hooks.rules().shares_rules(root, piece_root) || hooks.rules().specific(floor, piece_root) == rule;
+            Piece { handle, low: lowest(&world, handle), kept, bits: particles(&world, handle) }
         })
         .collect()
 }
 
 /// Both pieces of a bar cut in two, and of a bar torn in two, keep the
-/// bar's rule with the ground, however it was given.
+/// bar's rule with the ground, however it was given: each piece moves bit
+/// for bit as in the same scene with the ground 1 km below (which keeps
+/// every handle, so Rapier visits the pairs in the same order), and with
+/// `Normal` as in plain Rapier's steps of the same scene.
 #[test]
 fn the_pieces_of_a_cut_or_a_tear_keep_the_rules_of_the_body_they_came_from() {
     let cut = |world: &mut PhysicsWorld, bar| world.cut_soft_body(bar, &blade_at_x(0.1));
@@ -504,13 +523,29 @@ fn the_pieces_of_a_cut_or_a_tear_keep_the_rules_of_the_body_they_came_from() {
         let edges = edges_across_middle(world, bar);
         world.tear_soft_body(bar, &edges, &[])
     };
-    for rule in [CollisionRule::NoResponse, CollisionRule::NoContacts, CollisionRule::NoPair] {
+    let rules = [CollisionRule::Normal, CollisionRule::NoResponse, CollisionRule::NoContacts, CollisionRule::NoPair];
+    for rule in rules {
         for way in WAYS {
-            for (how, pieces) in [("cut", split_bar(way, rule, cut)), ("tear", split_bar(way, rule, tear))] {
-                for (piece, low, kept) in pieces {
-                    assert!(low < -1.0, "{how} {way:?} {rule:?}: piece {piece:?} rests at {low}");
+            for how in ["cut", "tear"] {
+                let scene = |depth: f32, hooked: bool| match how {
+                    "cut" => split_bar(way, rule, depth, hooked, cut),
+                    _ => split_bar(way, rule, depth, hooked, tear),
+                };
+                let pieces = scene(0.0, true);
+                let normal = rule == CollisionRule::Normal;
+                let reference = if normal { scene(0.0, false) } else { scene(-1000.0, true) };
+                assert_eq!(pieces.len(), reference.len(), "{how} {way:?} {rule:?}: pieces");
+                for (piece, like) in pieces.iter().zip(&reference) {
+                    let (handle, low) = (piece.handle, piece.low);
+                    let case = format!("{how} {way:?} {rule:?}: piece {handle:?} (lowest particle at {low}, {} in the reference)", like.low);
+                    assert!(piece.bits == like.bits, "{case} moves otherwise than its reference");
+                    if normal {
+                        assert!(low > -0.1, "{case} rests on the ground");
+                    } else {
+                        assert!(low < -1.0, "{case} falls through the ground");
+                    }
                     if !matches!(way, Way::Groups) {
-                        assert!(kept, "{how} {way:?} {rule:?}: piece {piece:?} lost the bar's rule");
+                        assert!(piece.kept, "{case} lost the bar's rule");
                     }
                 }
             }
@@ -926,5 +961,39 @@ fn a_sleeping_soft_body_wakes_for_a_new_rule() {
             !world.soft_bodies[block].is_sleeping() && low < -1.0,
             "{rule:?}: asleep after {steps} steps at {rested}, the block should wake and fall through: lowest particle at {low}"
         );
+    }
+}
+
+/// The pieces of a cut and of a tear keep their source's parent link: a
+/// rule given to the parent reaches every piece, and the pieces fall
+/// through the ground the parent's rule opens.
+#[test]
+fn the_pieces_of_a_cut_or_a_tear_keep_their_source_s_parent() {
+    for how in ["cut", "tear"] {
+        let (mut world, floor) = on_ground();
+        let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
+        let root = world.soft_bodies[bar].root_body();
+        let rig = world.insert_body(RigidBodyBuilder::fixed().translation(at(100.0, 0.0)));
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_parent(root, rig).expect("no cycle");
+        hooks.rules_mut().set_specific(rig, floor, CollisionRule::NoPair);
+        hooks.step(&mut world);
+        let event = match how {
+            "cut" => world.cut_soft_body(bar, &blade_at_x(0.1)),
+            _ => {
+                let edges = edges_across_middle(&world, bar);
+                world.tear_soft_body(bar, &edges, &[])
+            }
+        };
+        let pieces: Vec<SoftBodyHandle> = event.expect("the bar splits").bodies().collect();
+        for _ in 0..STEPS {
+            hooks.step(&mut world);
+        }
+        for piece in pieces {
+            let piece_root = world.soft_bodies[piece].root_body();
+            assert_eq!(hooks.rules().parent(piece_root), Some(rig), "{how}: piece {piece:?}'s parent");
+            let low = lowest(&world, piece);
+            assert!(low < -1.0, "{how}: piece {piece:?} falls through the ground its parent ignores: lowest particle at {low}");
+        }
     }
 }

@@ -491,7 +491,7 @@ fn split_bar(
     let root = world.soft_bodies[bar].root_body();
     let mut hooks = RuleHooks::default();
     give(&mut hooks, way, root, floor, rule);
-    let mut step = |world: &mut PhysicsWorld, hooks: &mut RuleHooks| {
+    let step = |world: &mut PhysicsWorld, hooks: &mut RuleHooks| {
         if hooked { hooks.step(world) } else { world.step() }
     };
     step(&mut world, &mut hooks);

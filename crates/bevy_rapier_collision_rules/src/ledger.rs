@@ -67,8 +67,8 @@ pub(crate) struct Named {
 /// The plugin's book of applied rules.
 #[derive(Resource, Debug, Default)]
 pub(crate) struct Ledger {
-    /// What each entity's components gave: read it here, change it
-    /// through the methods, which keep [`Ledger::at`] in step.
+    /// What each entity's components gave. An entity comes, goes or
+    /// changes place only through the methods, which keep `at` in step.
     pub(crate) applied: HashMap<Entity, Applied>,
     /// The entities whose applied rules are at each place.
     at: HashMap<Place, Vec<Entity>>,

@@ -746,22 +746,36 @@ fn a_piece_rooted_at_a_ruled_cluster_keeps_the_cluster_s_rules_over_the_bar_s() 
 }
 
 /// A rigid collider hung on the proxy of a cluster added to a soft body is
-/// reached by the soft body's rules through the root.
+/// reached by the soft body's rules through the root: the block and the
+/// ball move bit for bit as in the same scene with the ground 1 km below.
 #[test]
 fn a_collider_on_a_cluster_proxy_follows_the_soft_bodys_rules() {
-    let (mut world, floor, block, mut hooks) = block_without_ground();
-    let root = world.soft_bodies[block].root_body();
-    let cluster = world.add_soft_body_cluster(block, &[0, 1, 2, 3]).expect("a cluster of four particles");
-    let proxy = world.soft_bodies[block].cluster_proxy(cluster).expect("the cluster's proxy");
-    let hung = world.insert_collider(ColliderBuilder::ball(0.2), Some(proxy));
-    for _ in 0..STEPS {
+    let scene = |depth: f32| {
+        let mut world = PhysicsWorld::new();
+        let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, depth - 0.5)));
+        world.insert_collider(slab(5.0, 0.5), Some(floor));
+        let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
+        let root = world.soft_bodies[block].root_body();
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_specific(root, floor, CollisionRule::NoPair);
         hooks.step(&mut world);
-    }
-    assert_eq!(hooks.rules().parent(proxy), Some(root), "the proxy hangs under the root");
-    let low = lowest(&world, block);
+        let cluster = world.add_soft_body_cluster(block, &[0, 1, 2, 3]).expect("a cluster of four particles");
+        let proxy = world.soft_bodies[block].cluster_proxy(cluster).expect("the cluster's proxy");
+        let hung = world.insert_collider(ColliderBuilder::ball(0.2), Some(proxy));
+        for _ in 0..STEPS {
+            hooks.step(&mut world);
+        }
+        assert_eq!(hooks.rules().parent(proxy), Some(root), "the proxy hangs under the root");
+        let rule = hooks.rules().resolve(&world.bodies, &world.colliders, hung, world.bodies[floor].colliders()[0]);
+        assert_eq!(rule, CollisionRule::NoPair, "the ball on the proxy has the block's rule");
+        let mut bits = particles(&world, block);
+        bits.extend(pose_bits(world.colliders[hung].position()));
+        (bits, lowest(&world, block))
+    };
+    let (ruled, low) = scene(0.0);
+    let (away, low_away) = scene(-1000.0);
     assert!(low < -1.0, "the block and its ball fall through the ground: lowest particle at {low}");
-    let rule = hooks.rules().resolve(&world.bodies, &world.colliders, hung, world.bodies[floor].colliders()[0]);
-    assert_eq!(rule, CollisionRule::NoPair, "the ball on the proxy has the block's rule");
+    assert!(ruled == away, "the block and its ball move otherwise than with the ground away (lowest particle {low}, {low_away} away)");
 }
 
 /// No rules means plain Rapier, bit for bit, in a world of soft bodies that

@@ -47,8 +47,14 @@ fn give(hooks: &mut RuleHooks, way: Way, first: RigidBodyHandle, second: RigidBo
 /// A world with a fixed ground slab whose top is at y = 0: the world and
 /// the ground's body.
 fn on_ground() -> (PhysicsWorld, RigidBodyHandle) {
+    on_ground_at(0.0)
+}
+
+/// [`on_ground`] with the ground's top at y = `depth` (1 km below, the same
+/// world without the ground in reach, with the same handles).
+fn on_ground_at(depth: f32) -> (PhysicsWorld, RigidBodyHandle) {
     let mut world = PhysicsWorld::new();
-    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, -0.5)));
+    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, depth - 0.5)));
     world.insert_collider(slab(5.0, 0.5), Some(floor));
     (world, floor)
 }
@@ -484,9 +490,7 @@ fn split_bar(
     hooked: bool,
     split: impl Fn(&mut PhysicsWorld, SoftBodyHandle) -> Option<SoftBodyTearEvent>,
 ) -> Vec<Piece> {
-    let mut world = PhysicsWorld::new();
-    let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, depth - 0.5)));
-    world.insert_collider(slab(5.0, 0.5), Some(floor));
+    let (mut world, floor) = on_ground_at(depth);
     let bar = world.insert_soft_body(soft_bar(at(0.0, 0.6), 1.0));
     let root = world.soft_bodies[bar].root_body();
     let mut hooks = RuleHooks::default();
@@ -751,9 +755,7 @@ fn a_piece_rooted_at_a_ruled_cluster_keeps_the_cluster_s_rules_over_the_bar_s() 
 #[test]
 fn a_collider_on_a_cluster_proxy_follows_the_soft_bodys_rules() {
     let scene = |depth: f32| {
-        let mut world = PhysicsWorld::new();
-        let floor = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, depth - 0.5)));
-        world.insert_collider(slab(5.0, 0.5), Some(floor));
+        let (mut world, floor) = on_ground_at(depth);
         let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
         let root = world.soft_bodies[block].root_body();
         let mut hooks = RuleHooks::default();

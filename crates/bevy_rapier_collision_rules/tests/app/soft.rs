@@ -547,6 +547,41 @@ fn entity_rooted_at(sim: &mut Sim, root: RigidBodyHandle) -> Option<Entity> {
     set.soft_body_entity(handle)
 }
 
+/// A cluster of a bar's end whose tear made its proxy a piece's root.
+struct TornCluster {
+    cluster: Entity,
+    proxy: RigidBodyHandle,
+    /// The soft body entity whose root the proxy became.
+    piece: Entity,
+}
+
+/// Adds to `bar` a cluster (with `bundle`) of its particles at one end,
+/// lets `give` add rules now that the cluster's entity exists, steps a
+/// frame, tears the bar across x, and steps two more (bevy_rapier gives the
+/// piece its components at the next writeback): the cluster, if the tear
+/// made its proxy a piece's root.
+fn tear_off_cluster(
+    sim: &mut Sim,
+    bar: Entity,
+    (right, x): (bool, f32),
+    bundle: impl Bundle,
+    give: impl FnOnce(&mut Sim, Entity),
+) -> Option<TornCluster> {
+    let end = particles_at_end(sim, bar, right);
+    let cluster = sim.spawn((SoftBodyCluster::new(bar, end), bundle));
+    give(sim, cluster);
+    sim.run(1);
+    let proxy = sim.body(cluster);
+    split_at(sim, bar, Split::Tear, x).expect("the bar tears");
+    sim.run(2);
+    let piece = entity_rooted_at(sim, proxy)?;
+    Some(TornCluster {
+        cluster,
+        proxy,
+        piece,
+    })
+}
+
 /// Clusters at the right or left end of the bar, torn across x: those that
 /// split the cluster's end off give the piece the cluster's proxy as root.
 const CLUSTER_TEARS: [(bool, f32); 6] = [
@@ -595,20 +630,19 @@ fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
             SpecificRules::new().with(far, NoPair),
         ));
         sim.run(1);
-        let end = particles_at_end(&mut sim, bar_entity, right);
         let cluster_rules = || {
             (
                 RuleGroup(clusters),
                 SpecificRules::new().with(far, NoResponse),
             )
         };
-        let cluster = sim.spawn((SoftBodyCluster::new(bar_entity, end), cluster_rules()));
-        sim.run(1);
-        let proxy = sim.body(cluster);
-        split_at(&mut sim, bar_entity, Split::Tear, x).expect("the bar tears");
-        // bevy_rapier gives the piece its components at the next writeback.
-        sim.run(2);
-        let Some(piece) = entity_rooted_at(&mut sim, proxy) else {
+        let torn = tear_off_cluster(&mut sim, bar_entity, (right, x), cluster_rules(), |_, _| {});
+        let Some(TornCluster {
+            cluster,
+            proxy,
+            piece,
+        }) = torn
+        else {
             continue;
         };
         found += 1;
@@ -858,20 +892,18 @@ fn one_entity_s_entry_about_the_piece_shows_when_its_entry_about_the_cluster_end
         let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
         let far = sim.spawn((Transform::from_xyz(100.0, 0.0, 0.0), cuboid(0.5, 0.5, 0.5)));
         sim.run(1);
-        let end = particles_at_end(&mut sim, bar_entity, right);
-        let cluster = sim.spawn(SoftBodyCluster::new(bar_entity, end));
-        sim.run(1);
-        sim.entity_mut(far)
-            .insert(SpecificRules::new().with(bar_entity, NoPair).with_until(
-                cluster,
-                NoResponse,
-                Until::steps(30),
-            ));
-        sim.run(1);
-        let proxy = sim.body(cluster);
-        split_at(&mut sim, bar_entity, Split::Tear, x).expect("the bar tears");
-        sim.run(2);
-        let Some(piece) = entity_rooted_at(&mut sim, proxy) else {
+        let give = |sim: &mut Sim, cluster: Entity| {
+            let entries = SpecificRules::new().with(bar_entity, NoPair);
+            let entries = entries.with_until(cluster, NoResponse, Until::steps(30));
+            sim.entity_mut(far).insert(entries);
+        };
+        let torn = tear_off_cluster(&mut sim, bar_entity, (right, x), (), give);
+        let Some(TornCluster {
+            cluster,
+            proxy,
+            piece,
+        }) = torn
+        else {
             continue;
         };
         found += 1;
@@ -914,15 +946,17 @@ fn a_hidden_entry_with_an_end_starts_when_the_one_over_it_ends() {
                 let spare = sim.spawn(Transform::default());
                 sim.app.world_mut().despawn(spare);
             }
-            let end = particles_at_end(&mut sim, bar_entity, right);
             let entry = || SpecificRules::new().with_until(far, NoPair, Until::steps(20));
-            let cluster = sim.spawn((SoftBodyCluster::new(bar_entity, end), entry()));
-            sim.entity_mut(bar_entity).insert(entry());
-            sim.run(1);
-            let proxy = sim.body(cluster);
-            split_at(&mut sim, bar_entity, Split::Tear, x).expect("the bar tears");
-            sim.run(2);
-            let Some(piece) = entity_rooted_at(&mut sim, proxy) else {
+            let give = |sim: &mut Sim, _| {
+                sim.entity_mut(bar_entity).insert(entry());
+            };
+            let torn = tear_off_cluster(&mut sim, bar_entity, (right, x), entry(), give);
+            let Some(TornCluster {
+                cluster,
+                proxy,
+                piece,
+            }) = torn
+            else {
                 continue;
             };
             found += 1;

@@ -259,6 +259,9 @@ struct Planned {
     roster: Roster,
     /// How many colliders the last plan hooked.
     hooked: usize,
+    /// A plan was written or watched colliders went since `hooked` was
+    /// counted: counted once, at the end of `prepare`.
+    recount: bool,
     /// The colliders whose settings differ from the project's: what the
     /// project set and what the crate wrote.
     written: HandleMap<ColliderHandle, Written>,
@@ -331,6 +334,7 @@ impl RuleHooks {
                 plan: Plan::default(),
                 roster: Roster::default(),
                 hooked: 0,
+                recount: false,
                 written: HandleMap::default(),
                 modifying: HashSet::new(),
                 loaded: Vec::new(),

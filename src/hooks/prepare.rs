@@ -139,6 +139,9 @@ impl RuleHooks {
                 .to_wake
                 .extend(colliders.get(c).and_then(|c| c.parent()));
         }
+        if std::mem::take(&mut self.planned.recount) {
+            self.count_hooked();
+        }
         self.stats.hooked_colliders = self.planned.hooked;
         self.stats.full_pass = self.planned.plan.full;
         self.stats.shares_project_bits = self.planned.plan.room.is_some();
@@ -262,7 +265,7 @@ impl RuleHooks {
             }
         }
         if !(look.removed_colliders.is_empty() && look.released.is_empty()) {
-            self.count_hooked();
+            self.planned.recount = true;
         }
         changed.nodes.extend(look.changed);
         // Forgetting a removed parent changes its children's chains.

@@ -9,7 +9,7 @@
 use super::super::rapier::prelude::*;
 
 use super::super::Node;
-use super::super::model::{HandleMap, dynamic_body};
+use super::super::model::{Handle, HandleMap, dynamic_body};
 use super::super::world::{Mark, Settings};
 
 /// What the hooks remember of a watched collider.
@@ -39,18 +39,129 @@ struct KnownBody {
     colliders: usize,
 }
 
-/// The watched colliders and bodies, each in a dense slot-indexed table and
-/// a compact list (so that a look walks only them).
+/// The watched colliders and bodies, each kept in a list that a look walks
+/// in order, with what the hooks remember of it.
 #[derive(Debug, Default)]
 pub(crate) struct Roster {
-    colliders: HandleMap<ColliderHandle, Known>,
-    collider_list: Vec<ColliderHandle>,
-    /// Each watched body as of the last look.
-    bodies: HandleMap<RigidBodyHandle, KnownBody>,
-    body_list: Vec<RigidBodyHandle>,
-    /// Watched colliders whose slot a newer collider took before the look
-    /// that finds them removed, with the body each was on.
-    evicted: Vec<(ColliderHandle, Option<RigidBodyHandle>)>,
+    colliders: Watched<ColliderHandle, Known>,
+    bodies: Watched<RigidBodyHandle, KnownBody>,
+}
+
+/// The watched objects of one kind: each with what the hooks remember of it
+/// (`None`: a handle of no object in the world, which the next look finds
+/// removed), in a list that a look walks in order without a second lookup,
+/// and the position of each live one by its handle's slot. An object let go
+/// leaves a hole, and the list is closed up once half of it is holes: the
+/// oldest objects go first in a world that changes every step, and closing
+/// up at each of their removals would move every other entry.
+#[derive(Debug)]
+struct Watched<H, K> {
+    list: Vec<(H, Entry<K>)>,
+    at: HandleMap<H, u32>,
+    holes: usize,
+}
+
+/// A place in [`Watched`]'s list.
+#[derive(Debug)]
+enum Entry<K> {
+    Known(K),
+    /// A handle of no object in the world.
+    Alone,
+    /// An object let go.
+    Hole,
+}
+
+impl<H, K> Default for Watched<H, K> {
+    fn default() -> Self {
+        Watched {
+            list: Vec::new(),
+            at: HandleMap::default(),
+            holes: 0,
+        }
+    }
+}
+
+impl<H: Handle, K> Watched<H, K> {
+    #[inline]
+    fn len(&self) -> usize {
+        self.list.len() - self.holes
+    }
+
+    #[inline]
+    fn get(&self, handle: H) -> Option<&K> {
+        let &i = self.at.get(handle)?;
+        match &self.list[i as usize].1 {
+            Entry::Known(known) => Some(known),
+            _ => None,
+        }
+    }
+
+    #[inline]
+    fn get_mut(&mut self, handle: H) -> Option<&mut K> {
+        let &i = self.at.get(handle)?;
+        match &mut self.list[i as usize].1 {
+            Entry::Known(known) => Some(known),
+            _ => None,
+        }
+    }
+
+    /// The watched handles, in the order they were first watched.
+    fn handles(&self) -> impl Iterator<Item = H> + '_ {
+        self.list
+            .iter()
+            .filter(|(_, entry)| !matches!(entry, Entry::Hole))
+            .map(|&(handle, _)| handle)
+    }
+
+    /// Lists `handle` with `known`. An older generation the slot held stays
+    /// listed, with what was known of it: the next look finds it removed.
+    fn push(&mut self, handle: H, known: K) {
+        self.at.insert_evicting(handle, self.list.len() as u32);
+        self.list.push((handle, Entry::Known(known)));
+    }
+
+    /// Lists a handle of no object in the world: the next look finds it
+    /// removed, without taking its slot from a live object.
+    fn push_alone(&mut self, handle: H) {
+        self.list.push((handle, Entry::Alone));
+    }
+
+    /// Keeps the listed objects `keep` says (`None`: a handle of no object
+    /// in the world), in their order.
+    #[inline]
+    fn retain(&mut self, mut keep: impl FnMut(H, Option<&mut K>) -> bool) {
+        for i in 0..self.list.len() {
+            let (handle, entry) = &mut self.list[i];
+            let handle = *handle;
+            let kept = match entry {
+                Entry::Hole => continue,
+                Entry::Alone => keep(handle, None),
+                Entry::Known(known) => keep(handle, Some(known)),
+            };
+            if !kept {
+                let live = matches!(entry, Entry::Known(_));
+                *entry = Entry::Hole;
+                self.holes += 1;
+                if live && self.at.get(handle) == Some(&(i as u32)) {
+                    self.at.remove(handle);
+                }
+            }
+        }
+        if self.holes * 2 > self.list.len() {
+            self.close_up();
+        }
+    }
+
+    /// Closes the holes up, keeping the order.
+    fn close_up(&mut self) {
+        self.list.retain(|(_, entry)| !matches!(entry, Entry::Hole));
+        self.holes = 0;
+        for (i, (handle, entry)) in self.list.iter().enumerate() {
+            if let (Entry::Known(_), Some(at)) = (entry, self.at.get_mut(*handle)) {
+                *at = i as u32;
+            }
+        }
+    }
 }
 
 /// What one look found.
@@ -83,16 +194,17 @@ pub(crate) struct Look {
 impl Roster {
     #[inline]
     pub(crate) fn collider_count(&self) -> usize {
-        self.collider_list.len()
+        self.colliders.len()
     }
 
     #[inline]
     pub(crate) fn body_count(&self) -> usize {
-        self.body_list.len()
+        self.bodies.len()
     }
 
-    pub(crate) fn colliders(&self) -> &[ColliderHandle] {
-        &self.collider_list
+    /// The watched colliders, in the order they were first watched.
+    pub(crate) fn colliders(&self) -> impl Iterator<Item = ColliderHandle> + '_ {
+        self.colliders.handles()
     }
 
     /// Starts watching `collider` (as it is now); `true` if it was not watched.
@@ -105,30 +217,30 @@ impl Roster {
         if self.colliders.get(collider).is_some() {
             return false;
         }
-        if self.colliders.is_superseded(collider) || !colliders.contains(collider) {
+        let Some(co) = colliders
+            .get(collider)
+            .filter(|_| !self.colliders.at.is_superseded(collider))
+        else {
             // A handle of no collider in the world (its slot holds a newer
             // one, or one Rapier has yet to hand out, which a corrupt save
             // can name): listed alone, so that the next look reports it
             // removed, without taking the slot from a live collider.
-            self.collider_list.push(collider);
+            self.colliders.push_alone(collider);
             return false;
-        }
-        let body = colliders.get(collider).and_then(|c| c.parent());
+        };
+        let body = co.parent();
         let known = Known {
             body,
             dynamic: dynamic_body(bodies, body),
             wrote: None,
             // What it carries when first watched (a loaded world's mark, a
             // cut piece's copy of its source's) until the crate writes it.
-            crate_mark: colliders.get(collider).map_or(Mark::default(), Mark::on),
+            crate_mark: Mark::on(co),
             marked: false,
         };
         // A watched collider in a reused slot stays in the list: the next
         // look finds it removed, and its body lost a collider.
-        if let Some((old, known)) = self.colliders.insert_evicting(collider, known) {
-            self.evicted.push((old, known.body));
-        }
-        self.collider_list.push(collider);
+        self.colliders.push(collider, known);
         true
     }
 
@@ -137,8 +249,8 @@ impl Roster {
         if self.bodies.get(body).is_some() {
             return false;
         }
-        if self.bodies.is_superseded(body) || !bodies.contains(body) {
-            self.body_list.push(body);
+        if self.bodies.at.is_superseded(body) || !bodies.contains(body) {
+            self.bodies.push_alone(body);
             return false;
         }
         // A count no body has: the first look lists its colliders.
@@ -147,8 +259,7 @@ impl Roster {
             marked: false,
             colliders: usize::MAX,
         };
-        self.bodies.insert_evicting(body, known);
-        self.body_list.push(body);
+        self.bodies.push(body, known);
         true
     }
 
@@ -198,15 +309,11 @@ impl Roster {
                 }
             }
         }
-        let mut list = std::mem::take(&mut self.body_list);
-        list.retain(|&handle| {
-            let Some(body) = bodies.get(handle) else {
-                self.bodies.remove(handle);
-                look.removed_bodies.push(handle);
-                return false;
-            };
-            let Some(was) = self.bodies.get_mut(handle) else {
-                // An older generation evicted by a newer one: removed.
+        let watched_colliders = &self.colliders;
+        self.bodies.retain(|handle, was| {
+            // Gone from Rapier, or an older generation a newer body took the
+            // slot of, or never in the world: removed.
+            let (Some(body), Some(was)) = (bodies.get(handle), was) else {
                 look.removed_bodies.push(handle);
                 return false;
             };
@@ -217,19 +324,13 @@ impl Roster {
             if was.colliders != body.colliders().len() {
                 was.colliders = body.colliders().len();
                 for &collider in body.colliders() {
-                    if self.colliders.get(collider).is_none() {
+                    if watched_colliders.get(collider).is_none() {
                         look.added.push(collider);
                     }
                 }
             }
-            if !(std::mem::take(&mut was.marked) || ask_all) || keep(Node::Body(handle)) {
-                true
-            } else {
-                self.bodies.remove(handle);
-                false
-            }
+            !(std::mem::take(&mut was.marked) || ask_all) || keep(Node::Body(handle))
         });
-        self.body_list = list;
         for i in 0..look.added.len() {
             let collider = look.added[i];
             self.watch_collider(bodies, colliders, collider);
@@ -238,21 +339,13 @@ impl Roster {
         // Bodies that lost a watched collider: a collider may have come in
         // its place, leaving the count as it was.
         let mut recheck = Vec::new();
-        let mut list = std::mem::take(&mut self.collider_list);
-        list.retain(|&handle| {
-            // Gone from Rapier, or from our map: evicted by a newer collider
-            // in its slot (see `watch_collider`).
-            let (Some(collider), Some(known)) =
-                (colliders.get(handle), self.colliders.get_mut(handle))
+        let watched_bodies = &self.bodies;
+        self.colliders.retain(|handle, mut known| {
+            // Gone from Rapier, or an older generation a newer collider took
+            // the slot of (see `watch_collider`), or never in the world.
+            let (Some(collider), Some(known)) = (colliders.get(handle), known.as_deref_mut())
             else {
-                let body = match self.colliders.remove(handle) {
-                    Some(known) => known.body,
-                    None => self
-                        .evicted
-                        .iter()
-                        .find(|e| e.0 == handle)
-                        .and_then(|e| e.1),
-                };
+                let body = known.and_then(|k| k.body);
                 recheck.extend(body);
                 look.removed_colliders.push((handle, body));
                 return false;
@@ -275,7 +368,7 @@ impl Roster {
             let body = collider.parent();
             // A watched body's type was read by the body loop above: its
             // record answers without a second visit to Rapier's body.
-            let is_dynamic = match body.and_then(|b| self.bodies.get(b)) {
+            let is_dynamic = match body.and_then(|b| watched_bodies.get(b)) {
                 Some(known_body) => known_body.dynamic,
                 None => dynamic_body(bodies, body),
             };
@@ -291,17 +384,16 @@ impl Roster {
             if all || !ask || keep(Node::Collider(handle)) {
                 true
             } else {
-                self.colliders.remove(handle);
                 look.released.push(handle);
                 false
             }
         });
-        self.collider_list = list;
-        self.evicted.clear();
         look.left.clone_from(&recheck);
         for handle in recheck {
-            let (Some(body), Some(known)) = (bodies.get(handle), self.bodies.get_mut(handle))
-            else {
+            let Some(body) = bodies.get(handle) else {
+                continue;
+            };
+            let Some(known) = self.bodies.get_mut(handle) else {
                 continue;
             };
             known.colliders = body.colliders().len();
@@ -312,5 +404,64 @@ impl Roster {
             }
         }
         look
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn handle(index: u32, generation: u32) -> ColliderHandle {
+        ColliderHandle::from_raw_parts(index, generation)
+    }
+
+    /// Lets go of the listed handles `drop` names; returns those walked.
+    fn walk(watched: &mut Watched<ColliderHandle, u8>, drop: &[u32]) -> Vec<(u32, Option<u8>)> {
+        let mut seen = Vec::new();
+        watched.retain(|h, known| {
+            seen.push((h.into_raw_parts().0, known.as_deref().copied()));
+            !drop.contains(&h.into_raw_parts().0)
+        });
+        seen
+    }
+
+    #[test]
+    fn a_let_go_object_leaves_a_hole_until_half_the_list_is_holes() {
+        let mut watched = Watched::default();
+        for i in 0..4 {
+            watched.push(handle(i, 0), i as u8 * 10);
+        }
+        walk(&mut watched, &[0]);
+        assert_eq!((watched.list.len(), watched.len()), (4, 3), "one hole, kept");
+        assert_eq!(watched.get(handle(0, 0)), None);
+        assert_eq!(watched.get(handle(3, 0)), Some(&30));
+        // The walk skips the hole and keeps the order.
+        assert_eq!(walk(&mut watched, &[1, 2]), vec![(1, Some(10)), (2, Some(20)), (3, Some(30))]);
+        assert_eq!((watched.list.len(), watched.len()), (1, 1), "closed up");
+        // Each position follows its object when the list closes up.
+        assert_eq!(watched.get(handle(3, 0)), Some(&30));
+        *watched.get_mut(handle(3, 0)).unwrap() = 31;
+        assert_eq!(watched.handles().collect::<Vec<_>>(), vec![handle(3, 0)]);
+        assert_eq!(walk(&mut watched, &[]), vec![(3, Some(31))]);
+    }
+
+    #[test]
+    fn an_older_generation_stays_listed_with_what_was_known_of_it() {
+        let mut watched = Watched::default();
+        watched.push(handle(5, 0), 1);
+        watched.push(handle(5, 1), 2);
+        watched.push_alone(handle(9, 0));
+        assert_eq!(watched.get(handle(5, 0)), None, "its slot names the newer one");
+        assert_eq!(watched.get(handle(5, 1)), Some(&2));
+        assert_eq!(
+            walk(&mut watched, &[]),
+            vec![(5, Some(1)), (5, Some(2)), (9, None)],
+            "each walked, the one alone without a record"
+        );
+        // Letting the older one go leaves the newer one's place alone.
+        let mut first = true;
+        watched.retain(|_, _| !std::mem::take(&mut first));
+        assert_eq!(watched.get(handle(5, 1)), Some(&2));
+        assert_eq!(watched.len(), 2);
     }
 }

@@ -27,7 +27,7 @@ impl RuleHooks {
         // The watched colliders, and those waiting for a plan of their own
         // (a cut piece's copies of its source's colliders, which carry what
         // the crate wrote on the source).
-        let mut reached: Vec<ColliderHandle> = self.planned.roster.colliders().to_vec();
+        let mut reached: Vec<ColliderHandle> = self.planned.roster.colliders().collect();
         let waiting = self.queued.candidates.iter().copied();
         reached.extend(waiting.filter(|&c| colliders.contains(c)));
         reached.sort_unstable_by_key(|h| h.into_raw_parts());
@@ -89,7 +89,7 @@ impl RuleHooks {
         self.planned.plan = plan;
         self.queued.replan = None;
         self.queued.candidates.clear();
-        self.count_hooked();
+        self.planned.recount = true;
         // The set's copy of the decisions is the plan's (a set built by
         // code and put in place of another starts without them).
         self.planned.plan.decisions.drain_journal().for_each(drop);
@@ -141,7 +141,7 @@ impl RuleHooks {
         for (handle, entry) in planned {
             self.planned.plan.colliders.insert(handle, entry);
         }
-        self.count_hooked();
+        self.planned.recount = true;
     }
 
     /// Writes each collider's plan in the node order, whichever way the
@@ -167,8 +167,7 @@ impl RuleHooks {
             .planned
             .roster
             .colliders()
-            .iter()
-            .filter(|&&c| self.planned.plan.colliders.get(c).is_some_and(|p| p.hooked()))
+            .filter(|&c| self.planned.plan.colliders.get(c).is_some_and(|p| p.hooked()))
             .count();
     }
 

@@ -59,7 +59,7 @@ pub use snapshot::{LoadError, SavedRuleSet};
 pub(crate) use ending::Due;
 pub(crate) use body_kinds::{BodyKinds, body_of, dynamic_body, is_dynamic, soft_rigid};
 pub(crate) use pieces::Heir;
-pub(crate) use node::HandleMap;
+pub(crate) use node::{Handle, HandleMap};
 pub(crate) use node_rules::CollidersUnder;
 pub(crate) use records::Record;
 pub(crate) use decision::Decision;

@@ -603,7 +603,8 @@ impl Decisions {
         if !free.contains(Group::from_bits_retain(1 << bit)) {
             return None;
         }
-        self.bits_exact(request, facts, e, carried, others, kind, bit)
+        // Both sides were found eligible above, the carrying one dynamic.
+        self.links_exact(request, e, carried, others, kind, bit)
             .then_some(Decision::Bits {
                 carrying,
                 other,
@@ -733,20 +734,34 @@ impl Decisions {
         kind: usize,
         bit: u32,
     ) -> bool {
+        let all_eligible = |side: &[ColliderHandle], dynamic: bool| {
+            side.iter().all(|&c| {
+                eligible(request, facts, c).is_some_and(|d| d || !dynamic)
+            })
+        };
+        all_eligible(carried, true)
+            && all_eligible(others, false)
+            && self.links_exact(request, e, carried, others, kind, bit)
+    }
+
+    /// Whether bit `bit` of `kind` decides entry `e` exactly, where every
+    /// collider of `carried` and `others` may carry or leave out a bit and
+    /// those of `carried` are dynamic (see [`bits_exact`](Self::bits_exact)).
+    fn links_exact(
+        &self,
+        request: &Request<'_>,
+        e: (Node, Node),
+        carried: &[ColliderHandle],
+        others: &[ColliderHandle],
+        kind: usize,
+        bit: u32,
+    ) -> bool {
         let Request {
             rules,
             bodies,
             colliders,
             ..
         } = *request;
-        let all_eligible = |side: &[ColliderHandle], dynamic: bool| {
-            side.iter().all(|&c| {
-                eligible(request, facts, c).is_some_and(|d| d || !dynamic)
-            })
-        };
-        if !all_eligible(carried, true) || !all_eligible(others, false) {
-            return false;
-        }
         if carried.iter().any(|c| others.contains(c)) {
             return false;
         }

@@ -218,14 +218,19 @@ impl RuleHooks {
             }
         }
         // The decisions of entries the edits removed end, and what they said
-        // of the colliders under both nodes with them.
+        // of the colliders under their nodes with them (see
+        // `Decisions::forget_ended`).
         let mut ended = Vec::new();
         for &node in &nodes {
             let rules = &self.decide.rules;
-            ended.extend(self.planned.plan.decisions.forget_ended(node, |(x, y)| {
-                rules.specific(x, y) == CollisionRule::Defer
-                    && rules.specific(y, x) == CollisionRule::Defer
-            }));
+            ended.extend(self.planned.plan.decisions.forget_ended(
+                node,
+                |(x, y)| {
+                    rules.specific(x, y) == CollisionRule::Defer
+                        && rules.specific(y, x) == CollisionRule::Defer
+                },
+                |n| rules.in_entries(n),
+            ));
         }
         nodes.extend(ended);
         Changed {
@@ -483,8 +488,14 @@ impl RuleHooks {
         // A removed object's entries end, and what their decisions said of
         // the colliders on their other side.
         let mut ended = Vec::new();
+        let rules = &self.decide.rules;
         for node in gone {
-            ended.extend(self.planned.plan.decisions.forget_ended(node, |_| true));
+            ended.extend(
+                self.planned
+                    .plan
+                    .decisions
+                    .forget_ended(node, |_| true, |n| rules.in_entries(n)),
+            );
         }
         ended
     }

@@ -202,6 +202,12 @@ impl CollisionRuleSet {
         self.named.contains_key(&node)
     }
 
+    /// Whether a specific entry names `node` or `node` holds one: entries
+    /// reach the pairs of the colliders under it.
+    pub(crate) fn in_entries(&self, node: Node) -> bool {
+        self.is_named(node) || self.record(node).is_some_and(|r| !r.specific.is_empty())
+    }
+
     /// Whether the rules say anything of `node`: a record with rules, an
     /// entry about it, or a link of the parent map.
     pub(crate) fn holds_rules_about(&self, node: Node) -> bool {

@@ -68,6 +68,16 @@ pub(crate) struct Decisions {
     journal: Vec<((Node, Node), Option<Decision>)>,
 }
 
+/// What the decisions say of one node's colliders (all that
+/// [`Decisions::apply`] reads of a node): hooked, the membership bit it
+/// carries and the bit it leaves out, of each kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Footprint {
+    hooked: bool,
+    carrying: [Option<u32>; 2],
+    shared: [Option<u32>; 2],
+}
+
 /// What deciding reads besides the rules and the world.
 pub(super) struct Facts<'a> {
     /// The base of a collider the rules reach (`None`: not planned).
@@ -185,23 +195,47 @@ impl Decisions {
 
     /// Forgets the entries listed under `node` that `ended` says have ended
     /// (a removed object's, or one an edit removed), and returns their
-    /// nodes: the colliders under them are planned again, for what the
-    /// decision said of them ended too, and a personal rule may decide them
-    /// now that no entry reaches them.
+    /// nodes whose colliders are planned again: those the decisions now
+    /// say another thing of, and those `reached` says no entry reaches
+    /// through any more (a personal rule may decide them now). A turret
+    /// whose ball leaves keeps its bit for its other balls, and its plan.
     pub(crate) fn forget_ended(
         &mut self,
         node: Node,
         ended: impl Fn((Node, Node)) -> bool,
+        reached: impl Fn(Node) -> bool,
     ) -> Vec<Node> {
         let mut gone: Vec<(Node, Node)> = self.listed(node).filter(|&e| ended(e)).collect();
+        if gone.is_empty() {
+            return Vec::new();
+        }
         // In the node order, whatever the set's.
         gone.sort_unstable();
-        let mut nodes = Vec::new();
+        let mut nodes: Vec<Node> = gone.iter().flat_map(|&(x, y)| [x, y]).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let before: Vec<Footprint> = nodes.iter().map(|&n| self.footprint(n)).collect();
         for entry in gone {
             self.forget(entry);
-            nodes.extend([entry.0, entry.1]);
         }
         nodes
+            .into_iter()
+            .zip(before)
+            .filter(|&(n, was)| self.footprint(n) != was || !reached(n))
+            .map(|(n, _)| n)
+            .collect()
+    }
+
+    /// What the decisions say of `node`'s colliders.
+    pub(super) fn footprint(&self, node: Node) -> Footprint {
+        let bit = |map: &HashMap<(Node, usize), (u32, usize)>, kind| {
+            map.get(&(node, kind)).map(|&(bit, _)| bit)
+        };
+        Footprint {
+            hooked: self.hooked_sides.contains_key(&node),
+            carrying: [bit(&self.carrying, 0), bit(&self.carrying, 1)],
+            shared: [bit(&self.shared, 0), bit(&self.shared, 1)],
+        }
     }
 
     /// Whether `entry` has a decision.

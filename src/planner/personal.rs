@@ -138,7 +138,5 @@ fn touches_entries(
     rules
         .hierarchy
         .chain(bodies, colliders, start.into())
-        .any(|node| {
-            rules.is_named(node) || rules.record(node).is_some_and(|r| !r.specific.is_empty())
-        })
+        .any(|node| rules.in_entries(node))
 }

@@ -1,12 +1,12 @@
 //! Planning a few colliders against the rest of the plan, and when that
 //! is not enough.
 
-use hashbrown::HashSet;
+use hashbrown::{HashMap, HashSet};
 use super::super::rapier::prelude::*;
 
 use super::class::{Class, native_class};
 use super::collider_plan::ColliderPlan;
-use super::decisions::{Base, Facts};
+use super::decisions::{Base, Facts, Footprint};
 use super::personal::{first_personal, personal_rule};
 use super::plan::{Plan, Request, ordered};
 use super::room::Room;
@@ -101,6 +101,13 @@ pub(crate) fn replan_some(
         entries.sort_unstable();
         entries.dedup();
     }
+    // What the decisions say of each node of the entries, before: a node
+    // whose say the new decisions leave as it was keeps its colliders' plans.
+    let before: HashMap<Node, Footprint> = entries
+        .iter()
+        .flat_map(|&(x, y)| [x, y])
+        .map(|node| (node, plan.decisions.footprint(node)))
+        .collect();
     let changed = {
         let Plan {
             base,
@@ -125,13 +132,20 @@ pub(crate) fn replan_some(
         };
         decisions.decide(request, &mut facts, &entries)
     };
-    // An entry decided anew changes the colliders under both its nodes.
-    for (x, y) in changed {
-        for c in rules
-            .colliders_under(x, bodies, colliders)
-            .into_iter()
-            .chain(rules.colliders_under(y, bodies, colliders))
-        {
+    // An entry decided anew changes the colliders under its nodes whose say
+    // changed (a ball that shares its turret's bit leaves the turret's
+    // colliders as they were), and those not planned yet.
+    let mut nodes: Vec<Node> = changed.into_iter().flat_map(|(x, y)| [x, y]).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    for node in nodes {
+        let under = rules.colliders_under(node, bodies, colliders);
+        let kept = before.get(&node) == Some(&plan.decisions.footprint(node))
+            && under.iter().all(|c| plan.base.contains_key(c));
+        if kept {
+            continue;
+        }
+        for c in under {
             if seen.insert(c) {
                 if plan.base.get(&c).is_none() {
                     let base = base_of(plan, request, c)??;

@@ -382,3 +382,40 @@ fn a_shared_table_copied_every_step_plans_only_when_it_changes() {
         "the changed table reached Rapier's groups"
     );
 }
+
+#[test]
+fn when_its_last_entry_ends_a_personal_rule_decides_the_colliders_again() {
+    // A cube's personal NoResponse is Rapier's solver groups while no entry
+    // reaches it; a NoContacts entry about it (no group form) hooks it.
+    // When the object holding the entry is removed, the decision's end is
+    // the cube's change: its colliders are planned again and end as a
+    // whole plan makes them, in a world built without that object.
+    let settings = |scene: &Scene, c: ColliderHandle| {
+        let co = &scene.world.colliders[c];
+        (co.collision_groups(), co.solver_groups(), co.active_hooks())
+    };
+    let mut scene = Scene::new();
+    let (cube, c) = scene.cube(0.0, 0.5);
+    let (other, _) = scene.cube(3.0, 0.5);
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_personal(cube, NoResponse);
+    hooks.rules_mut().set_specific(other, cube, NoContacts);
+    for _ in 0..5 {
+        hooks.step(&mut scene.world);
+    }
+    assert!(hooked(&scene, c), "an entry hooks the cube: {:?}", settings(&scene, c));
+    scene.world.remove_body(other);
+    hooks.step(&mut scene.world);
+
+    let mut alone = Scene::new();
+    let (cube_alone, c_alone) = alone.cube(0.0, 0.5);
+    let mut fresh = RuleHooks::default();
+    fresh.rules_mut().set_personal(cube_alone, NoResponse);
+    fresh.step(&mut alone.world);
+    assert_eq!(
+        settings(&scene, c),
+        settings(&alone, c_alone),
+        "the cube after the entry ended, and in a world without it"
+    );
+    assert!(!hooked(&scene, c), "{:?}", hooks.stats());
+}

@@ -328,7 +328,9 @@ impl RuleHooks {
         graph: Option<&NarrowPhase>,
         changed: &Changed,
     ) -> HashSet<ColliderHandle> {
-        let mut under: HashSet<ColliderHandle> = changed.added.iter().copied().collect();
+        let mut under: HashSet<ColliderHandle> =
+            HashSet::with_capacity(changed.added.len() + changed.nodes.len());
+        under.extend(changed.added.iter().copied());
         self.queued.candidates.extend(changed.added.iter().copied());
         for &node in &changed.nodes {
             under.extend(self.colliders_under(node, bodies, colliders));

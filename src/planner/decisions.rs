@@ -205,6 +205,11 @@ impl Decisions {
         ended: impl Fn((Node, Node)) -> bool,
         reached: impl Fn(Node) -> bool,
     ) -> Vec<Node> {
+        // A world without entries (a streamed level of groups) asks this of
+        // every node it removes.
+        if self.listed.is_empty() {
+            return Vec::new();
+        }
         let mut gone: Vec<(Node, Node)> = self.listed(node).filter(|&e| ended(e)).collect();
         if gone.is_empty() {
             return Vec::new();

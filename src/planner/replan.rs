@@ -134,13 +134,15 @@ pub(crate) fn replan_some(
     };
     // An entry decided anew changes the colliders under its nodes whose say
     // changed (a ball that shares its turret's bit leaves the turret's
-    // colliders as they were), and those not planned yet.
+    // colliders as they were), those no entry reaches through any more
+    // (see `Decisions::forget_ended`), and those not planned yet.
     let mut nodes: Vec<Node> = changed.into_iter().flat_map(|(x, y)| [x, y]).collect();
     nodes.sort_unstable();
     nodes.dedup();
     for node in nodes {
         let under = rules.colliders_under(node, bodies, colliders);
         let kept = before.get(&node) == Some(&plan.decisions.footprint(node))
+            && rules.in_entries(node)
             && under.iter().all(|c| plan.base.contains_key(c));
         if kept {
             continue;

@@ -17,8 +17,9 @@ use super::super::world::{Mark, Settings};
 struct Known {
     body: Option<RigidBodyHandle>,
     dynamic: bool,
-    /// What the crate last wrote to it, if it differs from the project's
-    /// settings: the look compares, to notice the project's changes.
+    /// What it shows since the crate last gave it its plan (what the crate
+    /// wrote, or the project's own settings where the crate adds nothing):
+    /// the look compares, to notice the project's changes.
     wrote: Option<Settings>,
     /// The crate's mark it carries with what the crate wrote
     /// (`world/mark.rs`): the look compares, to give back a mark the
@@ -263,8 +264,9 @@ impl Roster {
         true
     }
 
-    /// Records what the crate wrote to a watched collider and the mark it
-    /// carries with it (`None`: the project's own settings).
+    /// Records what a watched collider shows once the crate gave it its
+    /// plan, and the crate's mark it carries with it (`None`: nothing to
+    /// compare, as after the project's settings were given back).
     pub(crate) fn wrote(&mut self, collider: ColliderHandle, wrote: Option<(Settings, Mark)>) {
         if let Some(known) = self.colliders.get_mut(collider) {
             known.wrote = wrote.map(|(settings, _)| settings);

@@ -206,7 +206,10 @@ impl RuleHooks {
         // world saved by any means keeps (`world/mark.rs`).
         let mark = Mark::of_written(written.as_ref());
         self.keep_written(handle, written);
-        self.planned.roster.wrote(handle, written.map(|w| (w.wrote, mark)));
+        // What the collider shows from now on, the crate's write or the
+        // project's own settings: the look notices the project's changes
+        // of either (`docs/semantics.md`, "Runtime changes").
+        self.planned.roster.wrote(handle, Some((target, mark)));
         let events = current.active_events();
         let marked = mark.in_events(events);
         if target == now {

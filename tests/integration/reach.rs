@@ -419,3 +419,44 @@ fn when_its_last_entry_ends_a_personal_rule_decides_the_colliders_again() {
     );
     assert!(!hooked(&scene, c), "{:?}", hooks.stats());
 }
+
+#[test]
+fn a_project_change_on_a_reached_collider_the_crate_never_wrote_is_noticed() {
+    // The ghost carries the bit of its entry about the floor; the cube it
+    // falls onto is reached by the rules (a group of its own) but keeps
+    // Rapier's defaults, so the crate writes nothing on it. The project
+    // then narrows the cube's filter, leaving out that very bit: the bit
+    // must move, or the ghost passes through the cube it should land on.
+    let mut scene = Scene::new();
+    let (_, c) = scene.cube(0.0, 0.5);
+    let (ghost, g) = scene.cube(0.0, 4.0);
+    let mut hooks = RuleHooks::default();
+    let group = hooks.rules_mut().create_group();
+    let cube = scene.world.colliders[c].parent().unwrap();
+    hooks.rules_mut().set_group(cube, Some(group));
+    hooks.rules_mut().set_specific(ghost, scene.ground, NoPair);
+    hooks.step(&mut scene.world);
+    let bit = scene.world.colliders[g].collision_groups().memberships;
+    assert_eq!(bit.bits().count_ones(), 1, "the ghost carries a bit: {bit:?}");
+    assert_eq!(
+        scene.world.colliders[c].collision_groups(),
+        InteractionGroups::all(),
+        "the crate wrote nothing on the cube"
+    );
+    let narrowed = InteractionGroups::new(Group::ALL, Group::ALL - bit, InteractionTestMode::And);
+    scene.world.colliders[c].set_collision_groups(narrowed);
+    for _ in 0..90 {
+        hooks.step(&mut scene.world);
+    }
+    assert_eq!(
+        scene.world.colliders[c].collision_groups(),
+        narrowed,
+        "the project's setting stays"
+    );
+    assert!(
+        scene.y(ghost) > 0.9,
+        "the ghost lands on the cube: y = {}, its groups {:?}",
+        scene.y(ghost),
+        scene.world.colliders[g].collision_groups()
+    );
+}

@@ -428,11 +428,10 @@ fn a_project_change_on_a_reached_collider_the_crate_never_wrote_is_noticed() {
     // then narrows the cube's filter, leaving out that very bit: the bit
     // must move, or the ghost passes through the cube it should land on.
     let mut scene = Scene::new();
-    let (_, c) = scene.cube(0.0, 0.5);
+    let (cube, c) = scene.cube(0.0, 0.5);
     let (ghost, g) = scene.cube(0.0, 4.0);
     let mut hooks = RuleHooks::default();
     let group = hooks.rules_mut().create_group();
-    let cube = scene.world.colliders[c].parent().unwrap();
     hooks.rules_mut().set_group(cube, Some(group));
     hooks.rules_mut().set_specific(ghost, scene.ground, NoPair);
     hooks.step(&mut scene.world);

@@ -9,7 +9,7 @@ use bevy::ecs::system::RunSystemOnce;
 use bevy::prelude::*;
 use bevy_rapier::plugin::context::RapierRigidBodySet;
 use bevy_rapier::prelude::*;
-use bevy_rapier::rapier::prelude::RigidBodyHandle;
+use bevy_rapier::rapier::prelude::{ColliderHandle, RigidBodyHandle};
 use bevy_rapier_collision_rules::prelude::*;
 
 use super::scene::{Sim, cuboid, floor};
@@ -593,6 +593,33 @@ const CLUSTER_TEARS: [(bool, f32); 6] = [
     (true, -0.4),
 ];
 
+/// Runs `case` for each of [`CLUSTER_TEARS`]; `case` says whether its tear
+/// gave a piece the cluster's proxy as root. At least one must.
+fn for_each_cluster_tear(mut case: impl FnMut(bool, f32) -> bool) {
+    let found = CLUSTER_TEARS
+        .into_iter()
+        .filter(|&(right, x)| case(right, x))
+        .count();
+    assert!(
+        found > 0,
+        "no tear gave a piece the cluster's proxy as root"
+    );
+}
+
+/// A box far from the bar, which the entries name.
+fn far_box(sim: &mut Sim) -> Entity {
+    sim.spawn((Transform::from_xyz(100.0, 0.0, 0.0), cuboid(0.5, 0.5, 0.5)))
+}
+
+/// The collider handle of `entity`.
+fn collider_of(sim: &Sim, entity: Entity) -> ColliderHandle {
+    sim.app
+        .world()
+        .get::<RapierColliderHandle>(entity)
+        .unwrap()
+        .0
+}
+
 /// A tear that splits a ruled `SoftBodyCluster` wholly off a bar gives the
 /// piece the cluster's proxy as its root (rapier 0.36.1): the cluster's
 /// entity and the piece's then describe one node. The cluster's rules come
@@ -602,8 +629,7 @@ const CLUSTER_TEARS: [(bool, f32); 6] = [
 /// "A cluster's own rules").
 #[test]
 fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
-    let mut found = 0;
-    for (right, x) in CLUSTER_TEARS {
+    for_each_cluster_tear(|right, x| {
         let case = format!(
             "cluster at the {} end, torn across x = {x}",
             if right { "right" } else { "left" }
@@ -611,7 +637,7 @@ fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
         let mut sim = Sim::new();
         let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
         let f = sim.spawn(floor());
-        let far = sim.spawn((Transform::from_xyz(100.0, 0.0, 0.0), cuboid(0.5, 0.5, 0.5)));
+        let far = far_box(&mut sim);
         let (bars, clusters, floors) = {
             let mut table = sim.table();
             let groups = (
@@ -643,10 +669,9 @@ fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
             piece,
         }) = torn
         else {
-            continue;
+            return false;
         };
-        found += 1;
-        let far_node = sim.app.world().get::<RapierColliderHandle>(far).unwrap().0;
+        let far_node = collider_of(&sim, far);
         let at_proxy = |sim: &mut Sim| {
             let rules = sim.rules().rules();
             let group = rules.group(proxy);
@@ -727,11 +752,8 @@ fn a_piece_rooted_at_a_ruled_cluster_holds_the_cluster_s_rules_over_its_own() {
             (None, Defer, Defer),
             "{case}: both removed"
         );
-    }
-    assert!(
-        found > 0,
-        "no tear gave a piece the cluster's proxy as root"
-    );
+        true
+    });
 }
 
 /// Every soft body's particles in the context, by handle, bit for bit.
@@ -886,11 +908,10 @@ type Frames = Vec<(CollisionRule, Option<CollisionRule>, Option<CollisionRule>)>
 /// shows there, as the component says.
 #[test]
 fn one_entity_s_entry_about_the_piece_shows_when_its_entry_about_the_cluster_ends() {
-    let mut found = 0;
-    for (right, x) in CLUSTER_TEARS {
+    for_each_cluster_tear(|right, x| {
         let mut sim = Sim::new();
         let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
-        let far = sim.spawn((Transform::from_xyz(100.0, 0.0, 0.0), cuboid(0.5, 0.5, 0.5)));
+        let far = far_box(&mut sim);
         sim.run(1);
         let give = |sim: &mut Sim, cluster: Entity| {
             let entries = SpecificRules::new().with(bar_entity, NoPair);
@@ -904,10 +925,9 @@ fn one_entity_s_entry_about_the_piece_shows_when_its_entry_about_the_cluster_end
             piece,
         }) = torn
         else {
-            continue;
+            return false;
         };
-        found += 1;
-        let far_node = sim.app.world().get::<RapierColliderHandle>(far).unwrap().0;
+        let far_node = collider_of(&sim, far);
         let held = sim.rules().rules().specific(far_node, proxy);
         assert_eq!(held, NoResponse, "x = {x}: the entry about the cluster");
         sim.run(60);
@@ -920,11 +940,8 @@ fn one_entity_s_entry_about_the_piece_shows_when_its_entry_about_the_cluster_end
         );
         let held = sim.rules().rules().specific(far_node, proxy);
         assert_eq!(held, NoPair, "x = {x}: the entry about the piece holds");
-    }
-    assert!(
-        found > 0,
-        "no tear gave a piece the cluster's proxy as root"
-    );
+        true
+    });
 }
 
 /// The cluster's and the piece's entries with an end about one body (the
@@ -933,11 +950,11 @@ fn one_entity_s_entry_about_the_piece_shows_when_its_entry_about_the_cluster_end
 /// end, whichever entity sorts first.
 #[test]
 fn a_hidden_entry_with_an_end_starts_when_the_one_over_it_ends() {
-    let mut found = 0;
-    for (right, x) in CLUSTER_TEARS {
+    for_each_cluster_tear(|right, x| {
+        let mut found = false;
         for cluster_first in [true, false] {
             let mut sim = Sim::new();
-            let far = sim.spawn((Transform::from_xyz(100.0, 0.0, 0.0), cuboid(0.5, 0.5, 0.5)));
+            let far = far_box(&mut sim);
             let bar_entity = sim.spawn((Transform::from_xyz(0.0, 0.1, 0.0), bar()));
             sim.run(1);
             if !cluster_first {
@@ -959,8 +976,8 @@ fn a_hidden_entry_with_an_end_starts_when_the_one_over_it_ends() {
             else {
                 continue;
             };
-            found += 1;
-            let far_node = sim.app.world().get::<RapierColliderHandle>(far).unwrap().0;
+            found = true;
+            let far_node = collider_of(&sim, far);
             let mut frames: Frames = Vec::new();
             for _ in 0..40 {
                 sim.run(1);
@@ -980,9 +997,6 @@ fn a_hidden_entry_with_an_end_starts_when_the_one_over_it_ends() {
             );
             assert_eq!(frames[ended].0, NoPair, "{case}: the piece's shows");
         }
-    }
-    assert!(
-        found > 0,
-        "no tear gave a piece the cluster's proxy as root"
-    );
+        found
+    });
 }

@@ -49,13 +49,9 @@ pub(crate) struct Decisions {
     /// A set per node: a hub is named by hundreds of entries, which come
     /// and go one at a time.
     listed: HashMap<Node, HashSet<(Node, Node)>>,
-    /// How many decisions hook the colliders under each node.
-    hooked_sides: HashMap<Node, usize>,
-    /// The bit each `(carrying node, kind)` carries, and for how many entries.
-    carrying: HashMap<(Node, usize), (u32, usize)>,
-    /// The bit of each `(other node, kind)`, which its colliders leave out,
-    /// and how many entries share it.
-    shared: HashMap<(Node, usize), (u32, usize)>,
+    /// What the decisions say of each node they name: one record, read
+    /// once for each node of a collider's chain.
+    says: HashMap<Node, Say>,
     /// How many nodes carry each bit, and how many leave it out: a bit is
     /// a star, one node on one end and any number on the other, so that
     /// each of its carriers meets each node that leaves it out through an
@@ -78,6 +74,51 @@ pub(super) struct Footprint {
     shared: [Option<u32>; 2],
 }
 
+/// A bit of one kind a node carries or leaves out, and how many entries
+/// use it there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Users {
+    bit: u32,
+    entries: usize,
+}
+
+/// What the decisions say of one node, with how many say it: how many hook
+/// its colliders, and of each kind the bit it carries and the bit it leaves
+/// out.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Say {
+    hooked: usize,
+    carrying: [Option<Users>; 2],
+    shared: [Option<Users>; 2],
+}
+
+/// Which of a node's bits an entry uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Role {
+    /// The membership bit its colliders carry.
+    Carrying,
+    /// The bit its colliders leave out.
+    Shared,
+}
+
+impl Say {
+    fn bits(&mut self, role: Role) -> &mut [Option<Users>; 2] {
+        match role {
+            Role::Carrying => &mut self.carrying,
+            Role::Shared => &mut self.shared,
+        }
+    }
+
+    fn footprint(&self) -> Footprint {
+        let bit = |users: Option<Users>| users.map(|u| u.bit);
+        Footprint {
+            hooked: self.hooked > 0,
+            carrying: self.carrying.map(bit),
+            shared: self.shared.map(bit),
+        }
+    }
+}
+
 /// What deciding reads besides the rules and the world.
 pub(super) struct Facts<'a> {
     /// The base of a collider the rules reach (`None`: not planned).
@@ -90,36 +131,6 @@ pub(super) struct Facts<'a> {
     pub(super) free: &'a mut dyn FnMut() -> Group,
 }
 
-/// One more user of `key`'s bit, and one more node on the bit in `nodes`
-/// if `key` had none.
-fn count_in(
-    map: &mut HashMap<(Node, usize), (u32, usize)>,
-    nodes: &mut NodesOnBits,
-    key: (Node, usize),
-    bit: u32,
-) {
-    let users = map.entry(key).or_insert((bit, 0));
-    if users.1 == 0 {
-        nodes[key.1][bit as usize] += 1;
-    }
-    users.1 += 1;
-}
-
-/// One user less of `key`'s bit, and one node less on the bit in `nodes`
-/// if that was the last.
-fn count_out(
-    map: &mut HashMap<(Node, usize), (u32, usize)>,
-    nodes: &mut NodesOnBits,
-    key: (Node, usize),
-) {
-    if let Some(users) = map.get_mut(&key) {
-        users.1 -= 1;
-        if users.1 == 0 {
-            nodes[key.1][users.0 as usize] -= 1;
-            map.remove(&key);
-        }
-    }
-}
 
 /// An entry whose decision [`Decisions::decide`] undid, to be made again.
 struct Undone {
@@ -233,14 +244,7 @@ impl Decisions {
 
     /// What the decisions say of `node`'s colliders.
     pub(super) fn footprint(&self, node: Node) -> Footprint {
-        let bit = |map: &HashMap<(Node, usize), (u32, usize)>, kind| {
-            map.get(&(node, kind)).map(|&(bit, _)| bit)
-        };
-        Footprint {
-            hooked: self.hooked_sides.contains_key(&node),
-            carrying: [bit(&self.carrying, 0), bit(&self.carrying, 1)],
-            shared: [bit(&self.shared, 0), bit(&self.shared, 1)],
-        }
+        self.says.get(&node).copied().unwrap_or_default().footprint()
     }
 
     /// Whether `entry` has a decision.
@@ -318,10 +322,10 @@ impl Decisions {
                 kind,
                 bit,
             } => {
-                count_in(&mut self.carrying, &mut self.carriers_on, (carrying, kind), bit);
-                count_in(&mut self.shared, &mut self.others_on, (other, kind), bit);
+                self.count_in(carrying, Role::Carrying, kind, bit);
+                self.count_in(other, Role::Shared, kind, bit);
             }
-            Decision::Hooked { side } => *self.hooked_sides.entry(side).or_default() += 1,
+            Decision::Hooked { side } => self.says.entry(side).or_default().hooked += 1,
         }
         self.made.insert(entry, decision);
         self.journal.push((entry, Some(decision)));
@@ -337,26 +341,87 @@ impl Decisions {
                 kind,
                 ..
             } => {
-                count_out(&mut self.carrying, &mut self.carriers_on, (carrying, kind));
-                count_out(&mut self.shared, &mut self.others_on, (other, kind));
+                self.count_out(carrying, Role::Carrying, kind);
+                self.count_out(other, Role::Shared, kind);
             }
             Decision::Hooked { side } => {
-                if let Some(count) = self.hooked_sides.get_mut(&side) {
-                    *count -= 1;
-                    if *count == 0 {
-                        self.hooked_sides.remove(&side);
-                    }
+                if let Some(say) = self.says.get_mut(&side) {
+                    say.hooked -= 1;
                 }
+                self.drop_if_silent(side);
             }
         }
         Some(decision)
     }
 
+    /// One more entry using `node`'s bit of `kind` in `role`, and one more
+    /// node on the bit if `node` had none.
+    fn count_in(&mut self, node: Node, role: Role, kind: usize, bit: u32) {
+        let users = self.says.entry(node).or_default().bits(role)[kind]
+            .get_or_insert(Users { bit, entries: 0 });
+        users.entries += 1;
+        if users.entries == 1 {
+            let bit = users.bit;
+            self.nodes_on(role)[kind][bit as usize] += 1;
+        }
+    }
+
+    /// One entry less using `node`'s bit of `kind` in `role`, and one node
+    /// less on the bit if that was the last.
+    fn count_out(&mut self, node: Node, role: Role, kind: usize) {
+        let Some(slot) = self.says.get_mut(&node).map(|say| &mut say.bits(role)[kind]) else {
+            return;
+        };
+        let Some(users) = slot else {
+            return;
+        };
+        users.entries -= 1;
+        if users.entries > 0 {
+            return;
+        }
+        let bit = users.bit;
+        *slot = None;
+        self.nodes_on(role)[kind][bit as usize] -= 1;
+        self.drop_if_silent(node);
+    }
+
+    /// How many nodes are on each bit in `role`.
+    fn nodes_on(&mut self, role: Role) -> &mut NodesOnBits {
+        match role {
+            Role::Carrying => &mut self.carriers_on,
+            Role::Shared => &mut self.others_on,
+        }
+    }
+
+    /// Forgets `node`'s record once the decisions say nothing of it.
+    fn drop_if_silent(&mut self, node: Node) {
+        if self.says.get(&node).is_some_and(|say| *say == Say::default()) {
+            self.says.remove(&node);
+        }
+    }
+
+    /// The bit `node` carries (`Role::Carrying`) or leaves out of `kind`.
+    fn bit(&self, node: Node, role: Role, kind: usize) -> Option<u32> {
+        let say = self.says.get(&node)?;
+        let bits = match role {
+            Role::Carrying => &say.carrying,
+            Role::Shared => &say.shared,
+        };
+        bits[kind].map(|users| users.bit)
+    }
+
+    /// Whether a decision hooks the colliders under `node`.
+    fn hooks_side(&self, node: Node) -> bool {
+        self.says.get(&node).is_some_and(|say| say.hooked > 0)
+    }
+
     /// Every bit an entry uses.
     fn used(&self) -> Group {
-        self.shared
+        self.says
             .values()
-            .fold(Group::empty(), |g, &(bit, _)| g | Group::from_bits_retain(1 << bit))
+            .flat_map(|say| say.shared)
+            .flatten()
+            .fold(Group::empty(), |g, users| g | Group::from_bits_retain(1 << users.bit))
     }
 
     /// Decides `entries` (sorted, each once) that have no decision or whose
@@ -624,11 +689,11 @@ impl Decisions {
         // over one floor), and the entries of one carrier share its bit
         // while it is the only carrier (a car through many pickups); else a
         // free bit.
-        let carried_bit = self.carrying.get(&(carrying, kind)).map(|&(bit, _)| bit);
+        let carried_bit = self.bit(carrying, Role::Carrying, kind);
         let free = (facts.free)();
-        let bit = match self.shared.get(&(other, kind)) {
-            Some(&(bit, _)) if carried_bit == Some(bit) => bit,
-            Some(&(bit, _)) if self.others_on[kind][bit as usize] == 1 => bit,
+        let bit = match self.bit(other, Role::Shared, kind) {
+            Some(bit) if carried_bit == Some(bit) => bit,
+            Some(bit) if self.others_on[kind][bit as usize] == 1 => bit,
             Some(_) => return None,
             None => match carried_bit {
                 Some(bit) if self.carriers_on[kind][bit as usize] == 1 => bit,
@@ -726,13 +791,11 @@ impl Decisions {
                     (None, Some(left_out)) => bits_of(left_out),
                     (None, None) => Vec::new(),
                 };
-                let agrees = |map: &HashMap<(Node, usize), (u32, usize)>, node, bit| {
-                    map.get(&(node, kind)).is_none_or(|&(b, _)| b == bit)
-                };
+                let agrees = |node, role, bit| self.bit(node, role, kind).is_none_or(|b| b == bit);
                 for bit in candidates {
                     let mask = Group::from_bits_retain(1 << bit);
-                    if agrees(&self.carrying, carrying, bit)
-                        && agrees(&self.shared, other, bit)
+                    if agrees(carrying, Role::Carrying, bit)
+                        && agrees(other, Role::Shared, bit)
                         && (facts.free)().contains(mask)
                         && self.bits_exact(request, facts, e, carried, others, kind, bit)
                     {
@@ -839,11 +902,7 @@ impl Decisions {
             rules
                 .hierarchy
                 .chain(bodies, colliders, Node::Collider(c))
-                .any(|node| {
-                    self.carrying
-                        .get(&(node, kind))
-                        .is_some_and(|&(b, _)| b != bit)
-                })
+                .any(|node| self.bit(node, Role::Carrying, kind).is_some_and(|b| b != bit))
         })
     }
 
@@ -857,7 +916,7 @@ impl Decisions {
                 .rules
                 .hierarchy
                 .chain(request.bodies, request.colliders, Node::Collider(c))
-                .any(|node| self.hooked_sides.contains_key(&node)),
+                .any(|node| self.hooks_side(node)),
         }
     }
 
@@ -876,15 +935,18 @@ impl Decisions {
             .hierarchy
             .chain(request.bodies, request.colliders, Node::Collider(c));
         for node in chain {
-            if self.hooked_sides.contains_key(&node) {
+            let Some(say) = self.says.get(&node) else {
+                continue;
+            };
+            if say.hooked > 0 {
                 return ColliderPlan::hooked_plan(base.dynamic);
             }
             for kind in 0..2 {
-                if let Some(&(bit, _)) = self.carrying.get(&(node, kind)) {
-                    membership[kind] = Some(bit);
+                if let Some(users) = say.carrying[kind] {
+                    membership[kind] = Some(users.bit);
                 }
-                if let Some(&(bit, _)) = self.shared.get(&(node, kind)) {
-                    excluded[kind] |= Group::from_bits_retain(1 << bit);
+                if let Some(users) = say.shared[kind] {
+                    excluded[kind] |= Group::from_bits_retain(1 << users.bit);
                 }
             }
         }

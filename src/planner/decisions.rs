@@ -12,6 +12,7 @@
 //! and gives way to a hooked side where it is no longer exact; a hooked side
 //! is always exact.
 
+use hashbrown::hash_map::Entry;
 use hashbrown::{HashMap, HashSet};
 use super::super::rapier::prelude::*;
 
@@ -46,9 +47,8 @@ pub(crate) struct Base {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Decisions {
     made: HashMap<(Node, Node), Decision>,
-    /// A set per node: a hub is named by hundreds of entries, which come
-    /// and go one at a time.
-    listed: HashMap<Node, HashSet<(Node, Node)>>,
+    /// The entries under each node.
+    listed: HashMap<Node, Listed>,
     /// What the decisions say of each node they name: one record, read
     /// once for each node of a collider's chain.
     says: HashMap<Node, Say>,
@@ -132,6 +132,53 @@ pub(super) struct Facts<'a> {
 }
 
 
+/// The entries listed under one node. Most nodes are named by one entry (a
+/// ball about its turret), which needs no set of its own; a hub is named
+/// by hundreds, which come and go one at a time.
+#[derive(Clone, Debug)]
+enum Listed {
+    One((Node, Node)),
+    Many(HashSet<(Node, Node)>),
+}
+
+impl Listed {
+    fn insert(&mut self, entry: (Node, Node)) {
+        match self {
+            Listed::One(one) if *one == entry => {}
+            Listed::One(one) => *self = Listed::Many(HashSet::from_iter([*one, entry])),
+            Listed::Many(set) => {
+                set.insert(entry);
+            }
+        }
+    }
+
+    /// Takes `entry` off the list; `true` when none is left.
+    fn remove(&mut self, entry: (Node, Node)) -> bool {
+        match self {
+            Listed::One(one) => *one == entry,
+            Listed::Many(set) => {
+                set.remove(&entry);
+                set.is_empty()
+            }
+        }
+    }
+
+    fn iter(&self) -> impl Iterator<Item = (Node, Node)> + '_ {
+        let (one, many) = match self {
+            Listed::One(one) => (Some(*one), None),
+            Listed::Many(set) => (None, Some(set)),
+        };
+        one.into_iter().chain(many.into_iter().flatten().copied())
+    }
+
+    fn len(&self) -> usize {
+        match self {
+            Listed::One(_) => 1,
+            Listed::Many(set) => set.len(),
+        }
+    }
+}
+
 /// An entry whose decision [`Decisions::decide`] undid, to be made again.
 struct Undone {
     entry: (Node, Node),
@@ -180,12 +227,12 @@ impl Decisions {
 
     /// The entries listed under `node`, in no order.
     pub(super) fn listed(&self, node: Node) -> impl Iterator<Item = (Node, Node)> + '_ {
-        self.listed.get(&node).into_iter().flatten().copied()
+        self.listed.get(&node).into_iter().flat_map(Listed::iter)
     }
 
     /// How many entries are listed under `node`.
     fn listed_count(&self, node: Node) -> usize {
-        self.listed.get(&node).map_or(0, HashSet::len)
+        self.listed.get(&node).map_or(0, Listed::len)
     }
 
     /// Forgets every entry not in `keep` (sorted): a whole plan's entries.
@@ -193,9 +240,9 @@ impl Decisions {
         let mut gone: Vec<(Node, Node)> = self
             .made
             .keys()
-            .chain(self.listed.values().flatten())
-            .filter(|e| keep.binary_search(e).is_err())
             .copied()
+            .chain(self.listed.values().flat_map(Listed::iter))
+            .filter(|e| keep.binary_search(e).is_err())
             .collect();
         gone.sort_unstable();
         gone.dedup();
@@ -296,18 +343,20 @@ impl Decisions {
 
     fn list(&mut self, entry: (Node, Node)) {
         for node in [entry.0, entry.1] {
-            self.listed.entry(node).or_default().insert(entry);
+            match self.listed.entry(node) {
+                Entry::Occupied(mut listed) => listed.get_mut().insert(entry),
+                Entry::Vacant(place) => {
+                    place.insert(Listed::One(entry));
+                }
+            }
         }
     }
 
     fn forget(&mut self, entry: (Node, Node)) -> Option<Decision> {
         let decision = self.unmake(entry);
         for node in [entry.0, entry.1] {
-            if let Some(listed) = self.listed.get_mut(&node) {
-                listed.remove(&entry);
-                if listed.is_empty() {
-                    self.listed.remove(&node);
-                }
+            if self.listed.get_mut(&node).is_some_and(|l| l.remove(entry)) {
+                self.listed.remove(&node);
             }
         }
         decision

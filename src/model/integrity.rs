@@ -28,7 +28,8 @@ pub enum Problem {
     },
     /// Walking up from this body never reaches a root.
     Cycle(RigidBodyHandle),
-    /// A live record no node uses, or whose user count is wrong.
+    /// A live record no node uses, or whose user count (or the one user it
+    /// names) is wrong.
     OrphanedRecord {
         /// The record's index.
         index: u32,
@@ -37,7 +38,7 @@ pub enum Problem {
         /// The nodes that use it.
         actual: u32,
     },
-    /// The count of entries naming a node disagrees with the records.
+    /// The records the set lists as naming a node disagree with the records.
     NamedCount(Node),
 }
 
@@ -91,7 +92,9 @@ impl CollisionRuleSet {
             let (actual, holder) = users
                 .get(&id)
                 .map_or((0, None), |&(n, node)| (n, Some(node)));
-            if actual != record.users() {
+            // The one user a record names is the node using it.
+            let one_user = (actual == 1).then_some(holder).flatten();
+            if actual != record.users() || record.only_user != one_user {
                 problems.push(Problem::OrphanedRecord {
                     index: id.index(),
                     counted: record.users(),
@@ -100,6 +103,9 @@ impl CollisionRuleSet {
             }
             for &about in record.specific.keys() {
                 *named.entry(about).or_default() += 1;
+                if !self.named.get(&about).is_some_and(|namers| namers.contains(id)) {
+                    problems.push(Problem::NamedCount(about));
+                }
                 if !exists(about) {
                     if let Some(node) = holder {
                         problems.push(Problem::DanglingEntry { node, about });

@@ -40,6 +40,7 @@ pub(crate) mod records;
 pub(crate) mod removal;
 pub(crate) mod rule;
 pub(crate) mod rule_set;
+pub(crate) mod small_set;
 #[cfg(feature = "serde")]
 pub(crate) mod snapshot;
 pub(crate) mod tombstones;
@@ -62,5 +63,6 @@ pub(crate) use pieces::Heir;
 pub(crate) use node::{Handle, HandleMap};
 pub(crate) use node_rules::CollidersUnder;
 pub(crate) use records::Record;
+pub(crate) use small_set::SmallSet;
 pub(crate) use decision::Decision;
 pub(crate) use written::{Settings, Written};

@@ -109,7 +109,8 @@ impl CollisionRuleSet {
         }
         if let Some(record) = self.record_mut(node) {
             if record.specific.insert(other, rule).is_none() {
-                *self.named.entry(other).or_default() += 1;
+                let id = self.record_id(node).expect("record_mut made one");
+                self.name(other, id);
             }
             self.touch(node);
             self.changes.subject(other);
@@ -131,7 +132,7 @@ impl CollisionRuleSet {
         self.forget_ending(node, other);
         if let Some(id) = self.record_id(node) {
             if self.records.get_mut(id).specific.remove(&other).is_some() {
-                self.unname(other);
+                self.unname(other, id);
             }
             self.tidy(node);
             self.changes.subject(other);
@@ -166,7 +167,9 @@ impl CollisionRuleSet {
         if self.record_id(to) == Some(id) {
             return;
         }
-        self.records.get_mut(id).users += 1;
+        let record = self.records.get_mut(id);
+        record.users += 1;
+        record.only_user = None;
         self.attach(to, id);
         self.changes.node(to);
     }

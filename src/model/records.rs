@@ -2,8 +2,10 @@
 //! and how nodes attach to them, share them and let them go.
 
 use hashbrown::HashMap;
+use hashbrown::hash_map::Entry;
 
 use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, OneWay};
+use super::SmallSet;
 
 /// The rules one node carries. Several nodes may share one record.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -16,6 +18,9 @@ pub(crate) struct Record {
     pub(crate) one_way: Option<OneWay>,
     /// How many nodes use this record; a record nobody uses is freed at once.
     pub(super) users: u32,
+    /// The node using it while it has one user (most records): the holder
+    /// of its entries, found without a walk of the records.
+    pub(super) only_user: Option<Node>,
 }
 
 impl Record {
@@ -99,9 +104,6 @@ impl Records {
             .filter_map(|(i, slot)| slot.as_ref().map(|r| (RecordId(i as u32), r)))
     }
 
-    pub(super) fn live_mut(&mut self) -> impl Iterator<Item = &mut Record> + '_ {
-        self.slots.iter_mut().flatten()
-    }
 }
 
 /// Records and the nodes that use them.
@@ -143,6 +145,7 @@ impl CollisionRuleSet {
             None => {
                 let id = self.records.insert(Record {
                     users: 1,
+                    only_user: Some(node),
                     ..Record::default()
                 });
                 self.attach(node, id);
@@ -178,17 +181,39 @@ impl CollisionRuleSet {
         }
         if let Some(freed) = self.records.release(id) {
             for other in freed.specific.keys() {
-                self.unname(*other);
+                self.unname(*other, id);
+            }
+        } else if self.records.get(id).users == 1 {
+            // A shared record down to one user (rare: the one walk of the
+            // records left, for a record that was shared).
+            let user = self.nodes().find(|&n| self.record_id(n) == Some(id));
+            self.records.get_mut(id).only_user = user;
+        }
+    }
+
+    /// Notes that record `id` holds an entry about `node`.
+    pub(super) fn name(&mut self, node: Node, id: RecordId) {
+        match self.named.entry(node) {
+            Entry::Occupied(mut namers) => namers.get_mut().insert(id),
+            Entry::Vacant(place) => {
+                place.insert(SmallSet::One(id));
             }
         }
     }
 
-    pub(super) fn unname(&mut self, node: Node) {
-        if let Some(count) = self.named.get_mut(&node) {
-            *count -= 1;
-            if *count == 0 {
-                self.named.remove(&node);
-            }
+    /// Notes that record `id` no longer holds an entry about `node`.
+    pub(super) fn unname(&mut self, node: Node, id: RecordId) {
+        if self.named.get_mut(&node).is_some_and(|namers| namers.remove(id)) {
+            self.named.remove(&node);
+        }
+    }
+
+    /// Logs the nodes that use record `id` as edited: its one user, or the
+    /// record, whose users are looked up when the log is read.
+    pub(super) fn touch_users(&mut self, id: RecordId) {
+        match self.records.get(id).only_user {
+            Some(user) => self.changes.node(user),
+            None => self.changes.record(id),
         }
     }
 
@@ -217,10 +242,13 @@ impl CollisionRuleSet {
     }
 
     /// The nodes whose records hold an entry about `node`, with its rule
-    /// (a walk of the records: for removals and splits, not per step).
+    /// (a walk of the nodes with records: for splits, not per step).
     pub(crate) fn entries_about(&self, node: Node) -> impl Iterator<Item = (Node, CollisionRule)> + '_ {
-        self.nodes()
-            .filter_map(move |n| Some((n, *self.record(n)?.specific.get(&node)?)))
+        let namers = self.named.get(&node);
+        self.nodes().filter_map(move |n| {
+            let id = self.record_id(n).filter(|&id| namers.is_some_and(|s| s.contains(id)))?;
+            Some((n, *self.records.get(id).specific.get(&node)?))
+        })
     }
 
     pub(crate) fn named_nodes(&self) -> impl Iterator<Item = &Node> + '_ {
@@ -228,7 +256,7 @@ impl CollisionRuleSet {
     }
 
     pub(crate) fn named_count(&self, node: Node) -> u32 {
-        self.named.get(&node).copied().unwrap_or(0)
+        self.named.get(&node).map_or(0, |namers| namers.len() as u32)
     }
 
     /// Lets go of `node`'s record.

@@ -48,15 +48,13 @@ impl CollisionRuleSet {
     /// without remembering it as removed.
     fn forget_node(&mut self, node: Node) {
         self.detach(node);
-        if self.named.remove(&node).is_some() {
-            // The nodes holding an entry about it change their pairs: logged,
-            // as an edit of theirs would be.
-            let holders: Vec<Node> = self.entries_about(node).map(|(n, _)| n).collect();
-            for record in self.records.live_mut() {
-                record.specific.remove(&node);
-            }
-            for holder in holders {
-                self.changes.node(holder);
+        if let Some(namers) = self.named.remove(&node) {
+            // The records holding an entry about it, and no other: the nodes
+            // using them change their pairs, logged as an edit of theirs
+            // would be.
+            for id in namers.iter() {
+                self.records.get_mut(id).specific.remove(&node);
+                self.touch_users(id);
             }
         }
         if let Node::Body(body) = node {
@@ -113,4 +111,55 @@ impl CollisionRuleSet {
         missing.len()
     }
 
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::rapier::prelude::*;
+    use super::super::super::{CollisionRule, CollisionRuleSet, Node};
+
+    /// The nodes the change log sends the hooks to, sorted.
+    fn touched(rules: &mut CollisionRuleSet) -> Vec<Node> {
+        let changes = rules.take_changes();
+        let mut nodes = rules.touched_nodes(&changes).expect("no global edit");
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
+    #[test]
+    fn removing_a_named_node_clears_and_logs_exactly_the_records_that_name_it() {
+        let mut bodies = RigidBodySet::new();
+        let colliders = ColliderSet::new();
+        let mut body = || bodies.insert(RigidBodyBuilder::dynamic());
+        let (a, b, c, lone, x) = (body(), body(), body(), body(), body());
+        let mut rules = CollisionRuleSet::default();
+        // `a` and `b` share one record naming `x`; `lone` names it alone;
+        // `c` names something else.
+        rules.share_rules(a, b);
+        rules.set_specific(a, x, CollisionRule::NoPair);
+        rules.set_specific(lone, x, CollisionRule::NoResponse);
+        rules.set_specific(c, lone, CollisionRule::NoContacts);
+        touched(&mut rules);
+        rules.remove_node(x);
+        for holder in [a, b, lone] {
+            assert_eq!(rules.specific(holder, x), CollisionRule::Defer);
+        }
+        assert_eq!(rules.specific(c, lone), CollisionRule::NoContacts, "another entry stays");
+        let mut expected = vec![Node::Body(a), Node::Body(b), Node::Body(lone)];
+        expected.sort_unstable();
+        assert_eq!(touched(&mut rules), expected, "the users of the two records");
+        assert_eq!(rules.validate(&bodies, &colliders), Ok(()));
+
+        // A shared record left with one user logs that user alone.
+        let (y, z) = (bodies.insert(RigidBodyBuilder::dynamic()), bodies.insert(RigidBodyBuilder::dynamic()));
+        rules.set_specific(b, y, CollisionRule::NoPair);
+        rules.remove_node(a);
+        rules.set_specific(b, z, CollisionRule::NoPair);
+        assert_eq!(rules.validate(&bodies, &colliders), Ok(()), "b is the record's one user");
+        touched(&mut rules);
+        rules.remove_node(y);
+        assert_eq!(touched(&mut rules), vec![Node::Body(b)]);
+        assert_eq!(rules.specific(b, z), CollisionRule::NoPair);
+    }
 }

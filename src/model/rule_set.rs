@@ -13,6 +13,7 @@ use super::decision::Decision;
 use super::written::Written;
 use super::node::HandleMap;
 use super::records::{RecordId, Records};
+use super::small_set::SmallSet;
 use super::tombstones::Tombstones;
 use super::super::{CollisionGroup, CollisionRule, Node};
 
@@ -58,8 +59,10 @@ pub struct CollisionRuleSet {
     pub(crate) records: Records,
     pub(crate) hierarchy: Hierarchy,
     pub(super) changes: Changes,
-    /// How many specific entries name each node (the planner asks).
-    pub(super) named: HashMap<Node, u32>,
+    /// The records holding a specific entry about each node: the planner
+    /// asks whether a node is named, and the removal of a named node visits
+    /// those records alone.
+    pub(super) named: HashMap<Node, SmallSet<RecordId>>,
     /// The handles forgotten as removed: every editing verb refuses them.
     pub(super) removed: Tombstones,
     /// The ends of the specific entries given one (see [`Until`](super::super::Until)).

@@ -20,7 +20,7 @@ use super::carriers::side_cost;
 use super::class::Class;
 use super::collider_plan::ColliderPlan;
 use super::plan::{Request, ordered};
-use super::super::model::{CollidersUnder, Decision};
+use super::super::model::{CollidersUnder, Decision, SmallSet};
 use super::super::world::Mark;
 use super::super::{CollisionRule, Node};
 
@@ -48,7 +48,7 @@ pub(crate) struct Base {
 pub(crate) struct Decisions {
     made: HashMap<(Node, Node), Decision>,
     /// The entries under each node.
-    listed: HashMap<Node, Listed>,
+    listed: HashMap<Node, SmallSet<(Node, Node)>>,
     /// What the decisions say of each node they name: one record, read
     /// once for each node of a collider's chain.
     says: HashMap<Node, Say>,
@@ -132,53 +132,6 @@ pub(super) struct Facts<'a> {
 }
 
 
-/// The entries listed under one node. Most nodes are named by one entry (a
-/// ball about its turret), which needs no set of its own; a hub is named
-/// by hundreds, which come and go one at a time.
-#[derive(Clone, Debug)]
-enum Listed {
-    One((Node, Node)),
-    Many(HashSet<(Node, Node)>),
-}
-
-impl Listed {
-    fn insert(&mut self, entry: (Node, Node)) {
-        match self {
-            Listed::One(one) if *one == entry => {}
-            Listed::One(one) => *self = Listed::Many(HashSet::from_iter([*one, entry])),
-            Listed::Many(set) => {
-                set.insert(entry);
-            }
-        }
-    }
-
-    /// Takes `entry` off the list; `true` when none is left.
-    fn remove(&mut self, entry: (Node, Node)) -> bool {
-        match self {
-            Listed::One(one) => *one == entry,
-            Listed::Many(set) => {
-                set.remove(&entry);
-                set.is_empty()
-            }
-        }
-    }
-
-    fn iter(&self) -> impl Iterator<Item = (Node, Node)> + '_ {
-        let (one, many) = match self {
-            Listed::One(one) => (Some(*one), None),
-            Listed::Many(set) => (None, Some(set)),
-        };
-        one.into_iter().chain(many.into_iter().flatten().copied())
-    }
-
-    fn len(&self) -> usize {
-        match self {
-            Listed::One(_) => 1,
-            Listed::Many(set) => set.len(),
-        }
-    }
-}
-
 /// An entry whose decision [`Decisions::decide`] undid, to be made again.
 struct Undone {
     entry: (Node, Node),
@@ -227,12 +180,12 @@ impl Decisions {
 
     /// The entries listed under `node`, in no order.
     pub(super) fn listed(&self, node: Node) -> impl Iterator<Item = (Node, Node)> + '_ {
-        self.listed.get(&node).into_iter().flat_map(Listed::iter)
+        self.listed.get(&node).into_iter().flat_map(SmallSet::iter)
     }
 
     /// How many entries are listed under `node`.
     fn listed_count(&self, node: Node) -> usize {
-        self.listed.get(&node).map_or(0, Listed::len)
+        self.listed.get(&node).map_or(0, SmallSet::len)
     }
 
     /// Forgets every entry not in `keep` (sorted): a whole plan's entries.
@@ -241,7 +194,7 @@ impl Decisions {
             .made
             .keys()
             .copied()
-            .chain(self.listed.values().flat_map(Listed::iter))
+            .chain(self.listed.values().flat_map(SmallSet::iter))
             .filter(|e| keep.binary_search(e).is_err())
             .collect();
         gone.sort_unstable();
@@ -346,7 +299,7 @@ impl Decisions {
             match self.listed.entry(node) {
                 Entry::Occupied(mut listed) => listed.get_mut().insert(entry),
                 Entry::Vacant(place) => {
-                    place.insert(Listed::One(entry));
+                    place.insert(SmallSet::One(entry));
                 }
             }
         }

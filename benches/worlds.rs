@@ -275,12 +275,16 @@ fn sleeping_pile(specific: bool) -> Scene {
 /// Shooters: ten fixed turrets on a floor, each firing a CCD ball from
 /// inside itself every step; a ball goes after 60 steps (600 alive). In the
 /// rules world each ball ignores its turret through
-/// `set_specific(ball, turret, NoPair)`; in the plain twin (and in the
+/// `set_specific(ball, turret, NoPair)`, or with `owned` through the
+/// turret's `set_specific(turret, ball, NoPair)` in a level whose 1,000 far
+/// props (in the air, touching nothing) each carry a group with no rule; in
+/// the plain twin (and in the
 /// control's), hand-written collision groups keep balls and turrets apart.
 struct Shooters {
     turrets: Vec<RigidBodyHandle>,
     fired: VecDeque<RigidBodyHandle>,
     step: u32,
+    owned: bool,
 }
 
 /// The collision groups of a turret (`true`) or a ball set apart by hand.
@@ -294,9 +298,22 @@ fn apart(turret: bool) -> InteractionGroups {
 }
 
 /// The floor and the turrets, set apart by hand from the balls in the plain
-/// twin (`by_hand`).
-fn shooters(by_hand: bool) -> (PhysicsWorld, Shooters) {
+/// twin (`by_hand`), and with `owned` the props and their rules.
+fn shooters(by_hand: bool, owned: bool) -> (PhysicsWorld, CollisionRuleSet, Shooters) {
     let mut world = PhysicsWorld::new();
+    let mut rules = CollisionRuleSet::default();
+    let props = rules.create_group();
+    for i in (0..1_000).filter(|_| owned) {
+        let prop = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(
+            (i % 40) as f32 * 3.0 - 60.0,
+            5.0,
+            (i / 40) as f32 * 3.0 + 100.0,
+        )));
+        world.insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(prop));
+        if !by_hand {
+            rules.set_group(prop, Some(props));
+        }
+    }
     let ground = world.insert_body(RigidBodyBuilder::fixed());
     world.insert_collider(
         ColliderBuilder::cuboid(200.0, 0.5, 200.0).translation(Vector::new(0.0, -0.5, 0.0)),
@@ -320,10 +337,12 @@ fn shooters(by_hand: bool) -> (PhysicsWorld, Shooters) {
     let fired = VecDeque::new();
     (
         world,
+        rules,
         Shooters {
             turrets,
             fired,
             step: 0,
+            owned,
         },
     )
 }
@@ -343,6 +362,9 @@ impl Churn for Shooters {
             );
             let mut collider = ColliderBuilder::ball(0.1);
             match rules.as_deref_mut() {
+                Some(rules) if self.owned => {
+                    rules.set_specific(turret, ball, CollisionRule::NoPair)
+                }
                 Some(rules) => rules.set_specific(ball, turret, CollisionRule::NoPair),
                 None => collider = collider.collision_groups(apart(false)),
             }
@@ -619,7 +641,10 @@ impl Churn for Rate {
 /// change").
 #[derive(Clone, Copy)]
 enum Changing {
-    Shooters,
+    /// `owned`: the turrets' records hold the entries, among ruled props.
+    Shooters {
+        owned: bool,
+    },
     Stream {
         specific: bool,
     },
@@ -639,9 +664,9 @@ impl Changing {
     /// whose physics is made alike by hand-written Rapier settings.
     fn make(self, by_hand: bool) -> (PhysicsWorld, CollisionRuleSet, Box<dyn Churn>) {
         match self {
-            Changing::Shooters => {
-                let (world, churn) = shooters(by_hand);
-                (world, CollisionRuleSet::default(), Box::new(churn))
+            Changing::Shooters { owned } => {
+                let (world, rules, churn) = shooters(by_hand, owned);
+                (world, rules, Box::new(churn))
             }
             Changing::Stream { specific } => {
                 let (world, rules, churn) = stream(specific);
@@ -830,8 +855,24 @@ fn worlds(c: &mut Criterion) {
 /// control (`docs/performance.md`, "Worlds that change").
 fn changing() -> Vec<(String, usize, Changing, bool)> {
     let mut all = vec![
-        ("churn/control".into(), 600, Changing::Shooters, true),
-        ("churn/shooters".into(), 600, Changing::Shooters, false),
+        (
+            "churn/control".into(),
+            600,
+            Changing::Shooters { owned: false },
+            true,
+        ),
+        (
+            "churn/shooters".into(),
+            600,
+            Changing::Shooters { owned: false },
+            false,
+        ),
+        (
+            "churn/shooters-owned".into(),
+            600,
+            Changing::Shooters { owned: true },
+            false,
+        ),
         (
             "churn/stream-control".into(),
             500,

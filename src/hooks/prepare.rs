@@ -18,6 +18,9 @@ struct Changed {
     nodes: Vec<Node>,
     /// Colliders the hooks saw for the first time.
     added: Vec<ColliderHandle>,
+    /// Entries edited alone, `(owner, subject)`: decided again, and the
+    /// pairs of the colliders under their smaller side recalculated.
+    entries: Vec<(Node, Node)>,
     /// An edit that can reach any pair (the policy recalculates all).
     everything: bool,
 }
@@ -236,6 +239,7 @@ impl RuleHooks {
         Changed {
             nodes,
             added: Vec::new(),
+            entries: changes.entries().to_vec(),
             everything: changes.everything,
         }
     }
@@ -278,6 +282,7 @@ impl RuleHooks {
         if let Some(more) = self.decide.rules.touched_nodes(&removal_changes) {
             changed.nodes.extend(more);
         }
+        changed.entries.extend_from_slice(removal_changes.entries());
         if !look.project_changed.is_empty() {
             self.queued.replan.get_or_insert(PlanCause::ProjectSettings);
         }
@@ -335,8 +340,22 @@ impl RuleHooks {
         for &node in &changed.nodes {
             under.extend(self.colliders_under(node, bodies, colliders));
         }
+        // An entry edited alone reaches the pairs between the colliders
+        // under its two sides: those of the smaller side's colliders. Its
+        // colliders are not planned again unless its decision changes what
+        // the decisions say of them (a turret's record names every live
+        // ball; the turret is planned again only when its bit changes).
+        let mut sides = Vec::new();
+        for &(owner, subject) in &changed.entries {
+            let (a, b) = (
+                self.colliders_under(owner, bodies, colliders),
+                self.colliders_under(subject, bodies, colliders),
+            );
+            sides.extend(if a.len() <= b.len() { a } else { b });
+        }
         // Their pairs may have changed in Rapier too: looked up after the step.
         self.queued.touched.extend(under.iter().copied());
+        self.queued.touched.extend(sides.iter().copied());
         self.queued
             .touched
             .extend(self.queued.candidates.iter().copied());
@@ -344,10 +363,11 @@ impl RuleHooks {
             self.apply_plan(bodies, colliders, graph, cause);
         } else {
             self.queued.candidates.extend(under.iter().copied());
-            if !self.queued.candidates.is_empty() {
-                self.apply_partial_plan(bodies, colliders, graph);
+            if !(self.queued.candidates.is_empty() && changed.entries.is_empty()) {
+                self.apply_partial_plan(bodies, colliders, graph, &changed.entries);
             }
         }
+        under.extend(sides);
         under
     }
 

@@ -5,6 +5,7 @@ use super::super::rapier::prelude::*;
 
 use super::{ManifoldUpdate, PlanCause, RecalculationPolicy, RuleHooks, own_settings};
 use super::super::model::dynamic_body;
+use super::super::Node;
 use super::super::planner::decisions::Decisions;
 use super::super::planner::{self, ColliderPlan, Request};
 use super::super::world::{Mark, Settings, Written};
@@ -96,13 +97,15 @@ impl RuleHooks {
         self.decide.rules.decisions = self.planned.plan.decisions.all().collect();
     }
 
-    /// Plans the candidate colliders alone when the rest of the plan stands
-    /// (see `planner::replan_some`), else everything reached.
+    /// Plans the candidate colliders and decides the entries edited alone
+    /// (`(owner, subject)`) when the rest of the plan stands (see
+    /// `planner::replan_some`), else everything reached.
     pub(super) fn apply_partial_plan(
         &mut self,
         bodies: &RigidBodySet,
         colliders: &mut ColliderSet,
         graph: Option<&NarrowPhase>,
+        edited: &[(Node, Node)],
     ) {
         let mut handles = std::mem::take(&mut self.queued.candidates);
         handles.sort_unstable_by_key(|h| h.into_raw_parts());
@@ -127,7 +130,8 @@ impl RuleHooks {
             soft_bodies: self.soft.present,
             loaded: false,
         };
-        let Some(planned) = planner::replan_some(&mut self.planned.plan, &request, &handles) else {
+        let Some(planned) = planner::replan_some(&mut self.planned.plan, &request, &handles, edited)
+        else {
             // The whole plan plans the candidates too (see `apply_plan`).
             self.queued.candidates = handles;
             return self.apply_plan(bodies, colliders, graph, PlanCause::NewClass);

@@ -17,6 +17,11 @@ pub(crate) struct Changes {
     /// Nodes an entry edit named as its subject: watched, but their own
     /// colliders' plans do not change (the entry's owner is logged too).
     subjects: Vec<Node>,
+    /// Entries edited on a record its owner alone uses, which held entries
+    /// before and after the edit: `(owner, subject)`. The owner's other
+    /// rules stand, so the entry alone is decided again (a turret's record
+    /// names every live ball: its other entries are not read).
+    entries: Vec<(Node, Node)>,
 }
 
 /// Past this many remembered edits, the log gives up and says "everything".
@@ -29,11 +34,24 @@ impl Changes {
             && self.records.is_empty()
             && self.nodes.is_empty()
             && self.subjects.is_empty()
+            && self.entries.is_empty()
     }
 
     /// The subjects of entry edits (see the field).
     pub(crate) fn subjects(&self) -> &[Node] {
         &self.subjects
+    }
+
+    /// The entries edited alone (see the field).
+    pub(crate) fn entries(&self) -> &[(Node, Node)] {
+        &self.entries
+    }
+
+    pub(super) fn entry(&mut self, owner: Node, subject: Node) {
+        if !self.everything {
+            self.entries.push((owner, subject));
+            self.cap();
+        }
     }
 
     pub(super) fn subject(&mut self, node: Node) {
@@ -62,10 +80,12 @@ impl Changes {
         self.records = Vec::new();
         self.nodes = Vec::new();
         self.subjects = Vec::new();
+        self.entries = Vec::new();
     }
 
     fn cap(&mut self) {
-        if self.records.len() + self.nodes.len() + self.subjects.len() > CHANGE_LOG_LIMIT {
+        let logged = self.records.len() + self.nodes.len() + self.subjects.len();
+        if logged + self.entries.len() > CHANGE_LOG_LIMIT {
             self.everything();
         }
     }

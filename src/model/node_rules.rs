@@ -108,11 +108,12 @@ impl CollisionRuleSet {
             return;
         }
         if let Some(record) = self.record_mut(node) {
+            let held_entries = !record.specific.is_empty();
             if record.specific.insert(other, rule).is_none() {
                 let id = self.record_id(node).expect("record_mut made one");
                 self.name(other, id);
             }
-            self.touch(node);
+            self.touch_entry(node, other, held_entries);
             self.changes.subject(other);
         }
     }
@@ -133,8 +134,10 @@ impl CollisionRuleSet {
         if let Some(id) = self.record_id(node) {
             if self.records.get_mut(id).specific.remove(&other).is_some() {
                 self.unname(other, id);
+                self.touch_entry(node, other, true);
+            } else {
+                self.tidy(node);
             }
-            self.tidy(node);
             self.changes.subject(other);
         }
     }

@@ -208,10 +208,14 @@ impl CollisionRuleSet {
         }
     }
 
-    /// Logs the nodes that use record `id` as edited: its one user, or the
-    /// record, whose users are looked up when the log is read.
-    pub(super) fn touch_users(&mut self, id: RecordId) {
-        match self.records.get(id).only_user {
+    /// Logs the edit of record `id`'s entry about `other`, which is gone:
+    /// as an edit of the entry alone where one node uses the record and it
+    /// still holds entries (see `touch_entry`), else as an edit of the
+    /// record's users, looked up when the log is read.
+    pub(super) fn touch_users(&mut self, id: RecordId, other: Node) {
+        let record = self.records.get(id);
+        match record.only_user {
+            Some(user) if !record.specific.is_empty() => self.changes.entry(user, other),
             Some(user) => self.changes.node(user),
             None => self.changes.record(id),
         }
@@ -280,6 +284,21 @@ impl CollisionRuleSet {
             if self.records.get(id).users > 1 {
                 self.changes.record(id);
             }
+        }
+    }
+
+    /// Logs an edit of `node`'s entry about `other` (`held_entries`: its
+    /// record held entries before the edit): the entry alone where nothing
+    /// else of the node's rules changed, which needs a record of its own
+    /// that holds entries before and after (whether entries reach a node's
+    /// colliders decides whether a personal rule may); else an edit of the
+    /// node's rules, tidied.
+    pub(super) fn touch_entry(&mut self, node: Node, other: Node, held_entries: bool) {
+        let alone = self.record(node).is_some_and(|r| r.users == 1 && !r.specific.is_empty());
+        if held_entries && alone {
+            self.changes.entry(node, other);
+        } else {
+            self.tidy(node);
         }
     }
 

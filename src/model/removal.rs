@@ -54,7 +54,7 @@ impl CollisionRuleSet {
             // would be.
             for id in namers.iter() {
                 self.records.get_mut(id).specific.remove(&node);
-                self.touch_users(id);
+                self.touch_users(id, node);
             }
         }
         if let Node::Body(body) = node {
@@ -151,7 +151,8 @@ mod tests {
         assert_eq!(touched(&mut rules), expected, "the users of the two records");
         assert_eq!(rules.validate(&bodies, &colliders), Ok(()));
 
-        // A shared record left with one user logs that user alone.
+        // A shared record left with one user logs that user's entry alone
+        // while the record holds others, and the user once it holds none.
         let (y, z) = (bodies.insert(RigidBodyBuilder::dynamic()), bodies.insert(RigidBodyBuilder::dynamic()));
         rules.set_specific(b, y, CollisionRule::NoPair);
         rules.remove_node(a);
@@ -159,7 +160,11 @@ mod tests {
         assert_eq!(rules.validate(&bodies, &colliders), Ok(()), "b is the record's one user");
         touched(&mut rules);
         rules.remove_node(y);
-        assert_eq!(touched(&mut rules), vec![Node::Body(b)]);
+        let changes = rules.take_changes();
+        assert_eq!(changes.entries(), [(Node::Body(b), Node::Body(y))]);
+        assert_eq!(rules.touched_nodes(&changes), Some(Vec::new()));
         assert_eq!(rules.specific(b, z), CollisionRule::NoPair);
+        rules.remove_node(z);
+        assert_eq!(touched(&mut rules), vec![Node::Body(b)], "b's record holds no entry now");
     }
 }

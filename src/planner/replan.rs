@@ -29,6 +29,7 @@ pub(crate) fn replan_some(
     plan: &mut Plan,
     request: &Request<'_>,
     handles: &[ColliderHandle],
+    edited: &[(Node, Node)],
 ) -> Option<Vec<(ColliderHandle, ColliderPlan)>> {
     let Request {
         rules,
@@ -69,13 +70,14 @@ pub(crate) fn replan_some(
         }
     }
 
-    // The entries that reach an asked collider: those of the nodes of its
-    // chain (an edit of a node may have changed them), and, for a collider
-    // that moved, those the decisions list under them (where it is the
-    // subject of an entry). The entries listed under a collider that did
-    // not move are as exact as they were: a hub named by many entries costs
-    // nothing when an edit or a removal touches it.
-    let mut entries: Vec<(Node, Node)> = Vec::new();
+    // The entries edited alone, and those that reach an asked collider:
+    // those of the nodes of its chain (an edit of a node's rules may have
+    // changed them), and, for a collider that moved, those the decisions
+    // list under them (where it is the subject of an entry). The entries
+    // listed under a collider that did not move are as exact as they were:
+    // a hub named by many entries costs nothing when an edit or a removal
+    // touches it.
+    let mut entries: Vec<(Node, Node)> = edited.iter().map(|&(x, y)| ordered(x, y)).collect();
     for &handle in &asked {
         let moved = moved.contains(&handle);
         for node in rules.hierarchy.chain(bodies, colliders, Node::Collider(handle)) {

@@ -459,3 +459,48 @@ fn a_project_change_on_a_reached_collider_the_crate_never_wrote_is_noticed() {
         scene.world.colliders[g].collision_groups()
     );
 }
+
+#[test]
+fn a_floor_that_names_its_ghosts_decides_each_new_or_changed_entry_alone() {
+    // The floor's record names every ghost (`set_specific(ground, ghost,
+    // NoPair)`): a ghost's bit, which the floor leaves out. An entry added
+    // or changed on that record is decided by itself: the floor, whose bit
+    // stays, is not planned again, and the ghost's pairs follow the rule.
+    let mut scene = Scene::new();
+    let mut hooks = RuleHooks::default();
+    for i in 0..3 {
+        let (ghost, _) = scene.cube(3.0 * i as f32, 3.0);
+        hooks.rules_mut().set_specific(scene.ground, ghost, NoPair);
+    }
+    hooks.step(&mut scene.world);
+    let (sinker, _) = scene.cube(-3.0, 0.6);
+    hooks.rules_mut().set_specific(scene.ground, sinker, NoPair);
+    hooks.step(&mut scene.world);
+    assert_eq!(hooks.stats().planned_colliders, 1, "the new ghost alone: {:?}", hooks.stats());
+    let (lander, _) = scene.cube(-6.0, 3.0);
+    hooks.rules_mut().set_specific(scene.ground, lander, NoPair);
+    hooks.step(&mut scene.world);
+    // The lander falls towards the floor it would pass through; its entry
+    // becomes Normal before it gets there.
+    hooks.rules_mut().set_specific(scene.ground, lander, Normal);
+    hooks.step(&mut scene.world);
+    assert_eq!(hooks.stats().planned_colliders, 1, "the changed ghost alone: {:?}", hooks.stats());
+    // A hooked entry (NoContacts has no group form) on a live pair: the
+    // cube sinks into the floor until its entry becomes Normal, which the
+    // pair's cached rule must follow.
+    let (wader, _) = scene.cube(-9.0, 0.5);
+    hooks.rules_mut().set_specific(scene.ground, wader, NoContacts);
+    for _ in 0..10 {
+        hooks.step(&mut scene.world);
+    }
+    let waded = scene.y(wader);
+    assert!(waded < 0.45, "NoContacts lets the cube sink: y = {waded}");
+    hooks.rules_mut().set_specific(scene.ground, wader, Normal);
+    for _ in 0..90 {
+        hooks.step(&mut scene.world);
+    }
+    let (sunk, landed, stood) = (scene.y(sinker), scene.y(lander), scene.y(wader));
+    assert!(sunk < -1.0, "the ghost passes through the floor: y = {sunk}");
+    assert!((landed - 0.5).abs() < 0.05, "the lander rests on the floor: y = {landed}");
+    assert!((stood - 0.5).abs() < 0.05, "Normal pushes the cube back up: y = {stood}");
+}

@@ -292,7 +292,10 @@ impl CollisionRuleSet {
             return;
         }
         match self.record_id(node) {
-            Some(record) => {
+            // A record shared: the end may have been given through another
+            // of its users. A record with one user keeps its ends under it
+            // (see `endings_leave`).
+            Some(record) if self.records.get(record).users > 1 => {
                 let ids: Vec<(Node, Node)> = self
                     .endings
                     .keys()
@@ -303,24 +306,37 @@ impl CollisionRuleSet {
                     self.endings.remove(&key);
                 }
             }
-            None => {
+            _ => {
                 self.endings.remove(&(node, other));
             }
         }
     }
 
-    /// `node` left record `id` (it shares another's now, or carries none):
-    /// the ends given through it go to the record's first other user, whose
-    /// sides are tested from now on, or with the record if nobody is left.
+    /// `node` left record `id` (it shares another's now, or carries none),
+    /// which it still counts among its users: the ends given through it go
+    /// to the record's first other user, whose sides are tested from now
+    /// on, or with the record if nobody is left. The ends are looked up by
+    /// the record's entries, not among every end (an end whose entry went
+    /// another way is dropped by the hooks' count).
     pub(super) fn endings_leave(&mut self, node: Node, id: super::records::RecordId) {
         if self.endings.is_empty() || self.record_id(node) == Some(id) {
             return;
         }
-        let keys: Vec<(Node, Node)> = self.endings.keys().filter(|(n, _)| *n == node).copied().collect();
+        let record = self.records.get(id);
+        let keys: Vec<(Node, Node)> = record
+            .specific
+            .keys()
+            .map(|&other| (node, other))
+            .filter(|key| self.endings.contains_key(key))
+            .collect();
         if keys.is_empty() {
             return;
         }
-        let heir = self.nodes().filter(|&n| self.record_id(n) == Some(id)).min();
+        let heir = if record.users > 1 {
+            self.nodes().filter(|&n| self.record_id(n) == Some(id)).min()
+        } else {
+            None
+        };
         for key in keys {
             let until = self.endings.remove(&key).expect("a listed end");
             if let Some(heir) = heir {

@@ -165,8 +165,8 @@ impl CollisionRuleSet {
             Node::Body(handle) => self.body_records.insert(handle, id),
         };
         if let Some(previous) = previous {
-            self.release(previous);
             self.endings_leave(node, previous);
+            self.release(previous);
         }
     }
 
@@ -270,8 +270,8 @@ impl CollisionRuleSet {
             Node::Body(handle) => self.body_records.remove(handle),
         };
         if let Some(previous) = previous {
-            self.release(previous);
             self.endings_leave(node, previous);
+            self.release(previous);
         }
     }
 

@@ -274,17 +274,28 @@ fn sleeping_pile(specific: bool) -> Scene {
 
 /// Shooters: ten fixed turrets on a floor, each firing a CCD ball from
 /// inside itself every step; a ball goes after 60 steps (600 alive). In the
-/// rules world each ball ignores its turret through
-/// `set_specific(ball, turret, NoPair)`, or with `owned` through the
-/// turret's `set_specific(turret, ball, NoPair)` in a level whose 1,000 far
-/// props (in the air, touching nothing) each carry a group with no rule; in
-/// the plain twin (and in the
-/// control's), hand-written collision groups keep balls and turrets apart.
+/// rules world each ball ignores its turret as [`Shot`] says; in the plain
+/// twin (and in the control's), hand-written collision groups keep balls
+/// and turrets apart.
 struct Shooters {
     turrets: Vec<RigidBodyHandle>,
     fired: VecDeque<RigidBodyHandle>,
     step: u32,
-    owned: bool,
+    shot: Shot,
+}
+
+/// How a shooters scene's ball ignores its turret.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Shot {
+    /// `set_specific(ball, turret, NoPair)`.
+    BallNames,
+    /// The turret's `set_specific(turret, ball, NoPair)`, in a level whose
+    /// 1,000 far props (in the air, touching nothing) each carry a group
+    /// with no rule.
+    TurretNames,
+    /// `set_specific_until(ball, turret, NoPair, Until::steps(120))`: a
+    /// rule with an end, which each ball carries for its whole life.
+    BallUntil,
 }
 
 /// The collision groups of a turret (`true`) or a ball set apart by hand.
@@ -298,12 +309,13 @@ fn apart(turret: bool) -> InteractionGroups {
 }
 
 /// The floor and the turrets, set apart by hand from the balls in the plain
-/// twin (`by_hand`), and with `owned` the props and their rules.
-fn shooters(by_hand: bool, owned: bool) -> (PhysicsWorld, CollisionRuleSet, Shooters) {
+/// twin (`by_hand`), and the props and their rules where the turrets name
+/// the balls.
+fn shooters(by_hand: bool, shot: Shot) -> (PhysicsWorld, CollisionRuleSet, Shooters) {
     let mut world = PhysicsWorld::new();
     let mut rules = CollisionRuleSet::default();
     let props = rules.create_group();
-    for i in (0..1_000).filter(|_| owned) {
+    for i in (0..1_000).filter(|_| shot == Shot::TurretNames) {
         let prop = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(
             (i % 40) as f32 * 3.0 - 60.0,
             5.0,
@@ -342,7 +354,7 @@ fn shooters(by_hand: bool, owned: bool) -> (PhysicsWorld, CollisionRuleSet, Shoo
             turrets,
             fired,
             step: 0,
-            owned,
+            shot,
         },
     )
 }
@@ -361,12 +373,17 @@ impl Churn for Shooters {
                     .ccd_enabled(true),
             );
             let mut collider = ColliderBuilder::ball(0.1);
-            match rules.as_deref_mut() {
-                Some(rules) if self.owned => {
+            match (rules.as_deref_mut(), self.shot) {
+                (Some(rules), Shot::BallNames) => {
+                    rules.set_specific(ball, turret, CollisionRule::NoPair)
+                }
+                (Some(rules), Shot::TurretNames) => {
                     rules.set_specific(turret, ball, CollisionRule::NoPair)
                 }
-                Some(rules) => rules.set_specific(ball, turret, CollisionRule::NoPair),
-                None => collider = collider.collision_groups(apart(false)),
+                (Some(rules), Shot::BallUntil) => {
+                    rules.set_specific_until(ball, turret, CollisionRule::NoPair, Until::steps(120))
+                }
+                (None, _) => collider = collider.collision_groups(apart(false)),
             }
             world.insert_collider(collider, Some(ball));
             self.fired.push_back(ball);
@@ -641,10 +658,7 @@ impl Churn for Rate {
 /// change").
 #[derive(Clone, Copy)]
 enum Changing {
-    /// `owned`: the turrets' records hold the entries, among ruled props.
-    Shooters {
-        owned: bool,
-    },
+    Shooters(Shot),
     Stream {
         specific: bool,
     },
@@ -664,8 +678,8 @@ impl Changing {
     /// whose physics is made alike by hand-written Rapier settings.
     fn make(self, by_hand: bool) -> (PhysicsWorld, CollisionRuleSet, Box<dyn Churn>) {
         match self {
-            Changing::Shooters { owned } => {
-                let (world, rules, churn) = shooters(by_hand, owned);
+            Changing::Shooters(shot) => {
+                let (world, rules, churn) = shooters(by_hand, shot);
                 (world, rules, Box::new(churn))
             }
             Changing::Stream { specific } => {
@@ -858,19 +872,25 @@ fn changing() -> Vec<(String, usize, Changing, bool)> {
         (
             "churn/control".into(),
             600,
-            Changing::Shooters { owned: false },
+            Changing::Shooters(Shot::BallNames),
             true,
         ),
         (
             "churn/shooters".into(),
             600,
-            Changing::Shooters { owned: false },
+            Changing::Shooters(Shot::BallNames),
             false,
         ),
         (
             "churn/shooters-owned".into(),
             600,
-            Changing::Shooters { owned: true },
+            Changing::Shooters(Shot::TurretNames),
+            false,
+        ),
+        (
+            "churn/shooters-until".into(),
+            600,
+            Changing::Shooters(Shot::BallUntil),
             false,
         ),
         (

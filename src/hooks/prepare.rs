@@ -279,8 +279,14 @@ impl RuleHooks {
         changed.nodes.extend(look.changed);
         // Forgetting a removed parent changes its children's chains.
         let removal_changes = self.decide.rules.take_changes();
-        if let Some(more) = self.decide.rules.touched_nodes(&removal_changes) {
-            changed.nodes.extend(more);
+        match self.decide.rules.touched_nodes(&removal_changes) {
+            Some(more) => changed.nodes.extend(more),
+            // So many removals that the log gave up: everything, as for an
+            // edit log past its limit.
+            None => {
+                self.queued.replan.get_or_insert(PlanCause::GlobalEdit);
+                changed.everything = true;
+            }
         }
         changed.entries.extend_from_slice(removal_changes.entries());
         if !look.project_changed.is_empty() {

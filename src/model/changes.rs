@@ -15,7 +15,8 @@ pub(crate) struct Changes {
     records: Vec<RecordId>,
     nodes: Vec<Node>,
     /// Nodes an entry edit named as its subject: watched, but their own
-    /// colliders' plans do not change (the entry's owner is logged too).
+    /// colliders' plans do not change (the entry's owner, or the entry
+    /// alone, is logged too).
     subjects: Vec<Node>,
     /// Entries edited on a record its owner alone uses, which held entries
     /// before and after the edit: `(owner, subject)`. The owner's other

@@ -51,12 +51,9 @@ pub(crate) fn replan_some(
             return None;
         }
         if let Some(base) = base_of(plan, request, handle)? {
-            let old = plan.base.insert(handle, base);
+            let old = put_base(plan, handle, base);
             if old != Some(base) {
                 moved.insert(handle);
-                if let Some(class) = base.class {
-                    *plan.class_counts.entry(class).or_default() += 1;
-                }
                 // The last member of its class left, or its personal rule
                 // went while that decides others' (see `Plan::forget`).
                 let emptied = old.and_then(|o| o.class).is_some_and(|c| plan.count_out(c));
@@ -153,7 +150,7 @@ pub(crate) fn replan_some(
             if seen.insert(c) {
                 if plan.base.get(&c).is_none() {
                     let base = base_of(plan, request, c)??;
-                    plan.base.insert(c, base);
+                    put_base(plan, c, base);
                 }
                 asked.push(c);
             }
@@ -169,6 +166,18 @@ pub(crate) fn replan_some(
         })
         .collect();
     Some(planned)
+}
+
+/// Gives `handle` its plan before the entries, counted in its class if it
+/// changed (the caller counts the old one out); returns the old one.
+fn put_base(plan: &mut Plan, handle: ColliderHandle, base: Base) -> Option<Base> {
+    let old = plan.base.insert(handle, base);
+    if old != Some(base) {
+        if let Some(class) = base.class {
+            *plan.class_counts.entry(class).or_default() += 1;
+        }
+    }
+    old
 }
 
 /// The plan of `handle` before the entries, against the rest of `plan`:

@@ -504,3 +504,38 @@ fn a_floor_that_names_its_ghosts_decides_each_new_or_changed_entry_alone() {
     assert!((landed - 0.5).abs() < 0.05, "the lander rests on the floor: y = {landed}");
     assert!((stood - 0.5).abs() < 0.05, "Normal pushes the cube back up: y = {stood}");
 }
+
+#[test]
+fn so_many_removals_in_one_step_that_their_log_gives_up_plan_everything() {
+    // A cube is a ghost through its parent's group; the parent goes in the
+    // same step as 4,100 bodies a holder's entries name, whose removals
+    // log more than the change log keeps. The cube's chain changed all
+    // the same: it must stop being a ghost and land on the floor.
+    let mut scene = Scene::new();
+    let mut hooks = RuleHooks::default();
+    let rules = hooks.rules_mut();
+    let (ghosts, floors) = (rules.create_group(), rules.create_group());
+    rules.set_group_rule(ghosts, floors, NoPair);
+    rules.set_group(scene.ground, Some(floors));
+    let parent = scene.world.insert_body(RigidBodyBuilder::fixed().translation(at(50.0, 5.0)));
+    let (cube, _) = scene.cube(0.0, 1.5);
+    let holder = scene.world.insert_body(RigidBodyBuilder::fixed().translation(at(-50.0, 5.0)));
+    let named: Vec<RigidBodyHandle> = (0..4_100)
+        .map(|_| scene.world.insert_body(RigidBodyBuilder::fixed().translation(at(-50.0, 9.0))))
+        .collect();
+    let rules = hooks.rules_mut();
+    rules.set_group(parent, Some(ghosts));
+    rules.set_parent(cube, parent).expect("no cycle");
+    for &n in &named {
+        rules.set_specific(holder, n, NoPair);
+    }
+    hooks.step(&mut scene.world);
+    for n in named.into_iter().chain([parent]) {
+        scene.world.remove_body(n);
+    }
+    for _ in 0..60 {
+        hooks.step(&mut scene.world);
+    }
+    let y = scene.y(cube);
+    assert!((y - 0.5).abs() < 0.05, "the cube lands on the floor: y = {y}");
+}

@@ -9,7 +9,7 @@ use super::super::rapier::prelude::*;
 
 use super::super::model::Due;
 use super::super::world::apart;
-use super::super::{CollisionRule, Node, Until};
+use super::super::{CollisionRule, Until};
 use super::{PairKey, RuleHooks};
 
 impl RuleHooks {
@@ -123,20 +123,11 @@ impl RuleHooks {
             return;
         }
         let rules = &mut self.decide.rules;
-        let mut entries: Vec<(Node, Node)> = rules.endings_mut().keys().copied().collect();
-        entries.sort_unstable();
-        for (node, other) in entries {
-            if !rules.specific(node, other).is_decided() {
-                // Removed another way (its object went, say): nothing to end.
-                rules.endings_mut().remove(&(node, other));
-                continue;
-            }
-            let until = rules.endings_mut().get_mut(&(node, other)).expect("a listed end");
-            let ends = match until.count_step(dt) {
+        for ((node, other), due, margin) in rules.count_ends(dt) {
+            let ends = match due {
                 Due::Not => false,
                 Due::Now => true,
                 Due::IfApart => {
-                    let margin = until.margin();
                     let side1 = rules.colliders_under(node, bodies, colliders);
                     let side2 = rules.colliders_under(other, bodies, colliders);
                     apart(&side1, &side2, colliders, margin)

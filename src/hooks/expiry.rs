@@ -7,7 +7,7 @@
 
 use super::super::rapier::prelude::*;
 
-use super::super::model::Due;
+use super::super::model::{Due, DueEnd};
 use super::super::world::apart;
 use super::super::{CollisionRule, Until};
 use super::{PairKey, RuleHooks};
@@ -123,9 +123,14 @@ impl RuleHooks {
             return;
         }
         let rules = &mut self.decide.rules;
-        for ((node, other), due, margin) in rules.count_ends(dt) {
+        for DueEnd {
+            node,
+            other,
+            due,
+            margin,
+        } in rules.count_ends(dt)
+        {
             let ends = match due {
-                Due::Not => false,
                 Due::Now => true,
                 Due::IfApart => {
                     let side1 = rules.colliders_under(node, bodies, colliders);
@@ -151,9 +156,9 @@ impl RuleHooks {
             let until = self.pair_ends.get_mut(&key).expect("a listed end");
             let (a, b) = key.colliders();
             let ends = match until.count_step(dt) {
-                Due::Not => false,
-                Due::Now => true,
-                Due::IfApart => apart(&[a], &[b], colliders, until.margin()),
+                None => false,
+                Some(Due::Now) => true,
+                Some(Due::IfApart) => apart(&[a], &[b], colliders, until.margin()),
             };
             if ends {
                 self.pair_ends.remove(&key);

@@ -52,11 +52,9 @@ enum Count {
     Seconds(Real),
 }
 
-/// Where an end stands after one more step was counted.
+/// An end that came with one more step counted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Due {
-    /// The count runs.
-    Not,
     /// The rule ends now if the sides are apart, and holds otherwise.
     IfApart,
     /// The rule ends now.
@@ -184,8 +182,9 @@ impl Until {
     }
 
     /// Counts the step about to be taken, `dt` long: whether the rule ends
-    /// before it. A count that is due stays due.
-    pub(crate) fn count_step(&mut self, dt: Real) -> Due {
+    /// before it (`None` while the count runs). A count that is due stays
+    /// due.
+    pub(crate) fn count_step(&mut self, dt: Real) -> Option<Due> {
         let due = match &mut self.count {
             Count::Apart => true,
             Count::Steps(0) => true,
@@ -205,11 +204,24 @@ impl Until {
             }
         };
         match (due, self.wait_apart) {
-            (false, _) => Due::Not,
-            (true, true) => Due::IfApart,
-            (true, false) => Due::Now,
+            (false, _) => None,
+            (true, true) => Some(Due::IfApart),
+            (true, false) => Some(Due::Now),
         }
     }
+}
+
+/// A specific entry whose end came in [`CollisionRuleSet::count_ends`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct DueEnd {
+    /// The entry's holder, as given.
+    pub(crate) node: Node,
+    /// The entry's subject.
+    pub(crate) other: Node,
+    /// Whether it ends now or once its sides are apart.
+    pub(crate) due: Due,
+    /// How far apart the sides must be.
+    pub(crate) margin: Real,
 }
 
 /// The ends of the specific entries that have one, keyed by the entry's
@@ -351,16 +363,20 @@ impl CollisionRuleSet {
     /// forgets the ends whose entry went another way (its object left,
     /// say), and returns the entries whose end has come or comes once
     /// their sides are apart, with the end's margin.
-    pub(crate) fn count_ends(&mut self, dt: Real) -> Vec<((Node, Node), Due, Real)> {
+    pub(crate) fn count_ends(&mut self, dt: Real) -> Vec<DueEnd> {
         let mut endings = std::mem::take(&mut self.endings);
         let mut due = Vec::new();
         endings.retain(|&(node, other), until| {
             if !self.specific(node, other).is_decided() {
                 return false;
             }
-            match until.count_step(dt) {
-                Due::Not => {}
-                now => due.push(((node, other), now, until.margin())),
+            if let Some(came) = until.count_step(dt) {
+                due.push(DueEnd {
+                    node,
+                    other,
+                    due: came,
+                    margin: until.margin(),
+                });
             }
             true
         });
@@ -381,10 +397,10 @@ mod tests {
     #[test]
     fn steps_hold_for_exactly_their_count() {
         let mut until = Until::steps(2);
-        assert_eq!(until.count_step(0.1), Due::Not);
-        assert_eq!(until.count_step(0.1), Due::Not);
-        assert_eq!(until.count_step(0.1), Due::IfApart);
-        assert_eq!(until.count_step(0.1), Due::IfApart, "a due count stays due");
+        assert_eq!(until.count_step(0.1), None);
+        assert_eq!(until.count_step(0.1), None);
+        assert_eq!(until.count_step(0.1), Some(Due::IfApart));
+        assert_eq!(until.count_step(0.1), Some(Due::IfApart), "a due count stays due");
     }
 
     #[test]
@@ -392,14 +408,14 @@ mod tests {
         let dt = 1.0 / 60.0;
         for (seconds, steps) in [(0.5, 30), (0.51, 31), (0.505, 30), (0.0, 0), (0.01, 1)] {
             let mut until = Until::seconds(seconds).even_if_overlapping();
-            let held = (0..100).take_while(|_| until.count_step(dt) == Due::Not).count();
+            let held = (0..100).take_while(|_| until.count_step(dt).is_none()).count();
             assert_eq!(held, steps, "Until::seconds({seconds}) at 60 Hz held {held} steps");
         }
     }
 
     #[test]
     fn apart_is_due_at_once() {
-        assert_eq!(Until::apart().count_step(0.1), Due::IfApart);
+        assert_eq!(Until::apart().count_step(0.1), Some(Due::IfApart));
     }
 
     #[test]

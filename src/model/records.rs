@@ -103,7 +103,6 @@ impl Records {
             .enumerate()
             .filter_map(|(i, slot)| slot.as_ref().map(|r| (RecordId(i as u32), r)))
     }
-
 }
 
 /// Records and the nodes that use them.

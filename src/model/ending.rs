@@ -290,11 +290,15 @@ impl CollisionRuleSet {
         }
         self.endings.get(&(node, other)).copied().or_else(|| {
             // The entry may have been given its end through a node that
-            // shares `node`'s record.
-            let record = self.record_id(node);
+            // shares `node`'s record. A record with one user keeps its
+            // ends under it (see `endings_leave`): nothing to look for.
+            let record = self.record_id(node)?;
+            if self.records.get(record).users < 2 {
+                return None;
+            }
             self.endings
                 .iter()
-                .find(|((n, o), _)| *o == other && self.record_id(*n) == record)
+                .find(|((n, o), _)| *o == other && self.record_id(*n) == Some(record))
                 .map(|(_, until)| *until)
         })
     }

@@ -231,12 +231,20 @@ impl RuleHooks {
     }
 
     /// Notes that Rapier stepped with the hooks (`prepare` checks that
-    /// `after_step` followed). Written once per step: the other answers
-    /// only read it.
+    /// `after_step` followed), or, after their own step, without their
+    /// `prepare` (which the next `prepare` reports). Written once per step:
+    /// the other answers only read it.
     #[inline]
     fn answering(&self) {
-        if self.boundary.prepared && !self.boundary.stepped.load(Ordering::Relaxed) {
-            self.boundary.stepped.store(true, Ordering::Relaxed);
+        let seen = if self.boundary.prepared {
+            &self.boundary.stepped
+        } else if self.boundary.own_step {
+            &self.boundary.unprepared
+        } else {
+            return;
+        };
+        if !seen.load(Ordering::Relaxed) {
+            seen.store(true, Ordering::Relaxed);
         }
     }
 

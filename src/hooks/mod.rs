@@ -124,6 +124,18 @@ type CreatedCallback = Box<dyn Fn(&PairCreated<'_>) -> Option<CollisionRule> + S
 /// implementation that answers every pair from its rule, keeps the table of
 /// live pairs, and configures the colliders' flags itself.
 ///
+/// The hooks step the world themselves: [`step`](Self::step) (or
+/// [`step_with_events`](Self::step_with_events), or
+/// [`step_pipeline`](Self::step_pipeline) on bare sets), or
+/// [`prepare`](Self::prepare) before and [`after_step`](Self::after_step)
+/// after a bare `PhysicsPipeline::step` given the hooks. Given to
+/// `world.step_with_events(&hooks, ..)` alone they plan nothing: a rule that
+/// Rapier's groups carry is not written, and a new object has no rule.
+/// After a step of their own, the hooks notice Rapier asking them before
+/// the next: a debug build panics there, naming the fix, and a release
+/// build warns once. Hooks that never stepped cannot tell
+/// (`docs/semantics.md`, "Stepping without the hooks").
+///
 /// ```
 /// use rapier3d::prelude::*;
 /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, RuleHooks};
@@ -194,6 +206,17 @@ struct Boundary {
     prepared: bool,
     /// The hook answered since the last `prepare`.
     stepped: AtomicBool,
+    /// The hooks' last step was their own (`step`, `step_with_events`,
+    /// `step_pipeline`), which brackets Rapier's step itself: until the
+    /// next, Rapier asks them nothing. (Hooks stepped with `prepare` and
+    /// `after_step` around a step of the project's, as Bevy's, are asked
+    /// where the project steps, and check only the bracket.)
+    own_step: bool,
+    /// The hook answered after the hooks' own step and before the next:
+    /// Rapier stepped with them but without their `prepare` (the hooks
+    /// given to `world.step_with_events(&hooks, ..)`). The next `prepare`
+    /// says so.
+    unprepared: AtomicBool,
     /// A `ManifoldUpdate::Never` setting waits for `freeze_manifolds`.
     unsettled: bool,
     /// One did at `prepare`: `after_step` checks that it was settled.
@@ -308,6 +331,8 @@ impl RuleHooks {
                 step: 0,
                 prepared: false,
                 stepped: AtomicBool::new(false),
+                own_step: false,
+                unprepared: AtomicBool::new(false),
                 unsettled: false,
                 owe_freeze: false,
                 census: Census::default(),

@@ -104,6 +104,7 @@ impl RuleHooks {
         graph: Option<&NarrowPhase>,
     ) {
         self.open_step();
+        self.check_prepared();
         if self.boundary.step == 1 {
             self.adopt_marks(colliders);
         }

@@ -40,7 +40,9 @@ impl RuleHooks {
             // rules do not reach steps as plainly as it can
             // (`docs/performance.md`, "What the remaining cost is").
             self.count_idle_step();
+            self.boundary.own_step = false;
             world.step_with_events(&*self, events);
+            self.boundary.own_step = true;
             self.record_step((&*world).into());
             return;
         }
@@ -111,6 +113,7 @@ impl RuleHooks {
     ) {
         self.follow_soft_bodies(soft_bodies, bodies);
         self.boundary.dt = integration_parameters.dt;
+        self.boundary.own_step = false;
         let idle = self.idle(colliders);
         if idle {
             self.count_idle_step();
@@ -136,6 +139,7 @@ impl RuleHooks {
             events,
         );
         if idle {
+            self.boundary.own_step = true;
             self.record_step(WorldRef::new(narrow_phase, bodies, colliders).with_joints(impulse_joints, multibody_joints));
             return;
         }
@@ -148,6 +152,7 @@ impl RuleHooks {
             multibody: multibody_joints,
         };
         self.finish_step(narrow_phase, bodies, colliders, Some(joints), quiet);
+        self.boundary.own_step = true;
         self.record_step(WorldRef::new(narrow_phase, bodies, colliders).with_joints(impulse_joints, multibody_joints));
     }
 

@@ -324,3 +324,53 @@ fn stepping_rapier_without_the_hooks_is_caught_at_the_next_step() {
         );
     }
 }
+
+/// The hooks given to Rapier's step directly, without their `prepare`
+/// (`world.step_with_events(&hooks, ..)`): the hook answers, so no rule
+/// looks broken to the witness, but nothing that changed was planned. The
+/// next step of the hooks says so, naming the fix (`docs/semantics.md`,
+/// "Stepping without the hooks").
+#[test]
+fn stepping_rapier_with_the_hooks_but_without_prepare_is_caught_at_the_next_step() {
+    use super::{cube, slab};
+    let build = || {
+        let mut world = PhysicsWorld::new();
+        let ground = world.insert_body(RigidBodyBuilder::fixed());
+        world.insert_collider(slab(10.0, 0.5), Some(ground));
+        let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 1.0)));
+        world.insert_collider(cube(0.5), Some(ghost));
+        let mut hooks = RuleHooks::default();
+        // Every collider hooked: Rapier asks the hook about the pair.
+        hooks.set_planner(false);
+        hooks.rules_mut().set_specific(ghost, ground, CollisionRule::NoContacts);
+        (world, hooks)
+    };
+    let (mut world, mut hooks) = build();
+    for _ in 0..3 {
+        hooks.step(&mut world);
+        assert!(!hooks.stats().stepped_without_hooks, "stepped with the hooks");
+    }
+    world.step_with_events(&hooks, &());
+    if !cfg!(debug_assertions) {
+        hooks.step(&mut world);
+        assert!(
+            hooks.stats().stepped_without_hooks,
+            "a step without prepare went unnoticed: {:?}",
+            hooks.stats()
+        );
+        hooks.step(&mut world);
+        assert!(!hooks.stats().stepped_without_hooks, "said once, for the step it happened in");
+        return;
+    }
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        hooks.step(&mut world);
+    }));
+    let message = outcome
+        .err()
+        .and_then(|panic| panic.downcast::<String>().ok())
+        .unwrap_or_else(|| panic!("a step without prepare went unnoticed"));
+    assert!(
+        message.contains("without their `prepare`") && message.contains("hooks.step(&mut world)"),
+        "the message names what happened and the fix: {message}"
+    );
+}

@@ -21,6 +21,10 @@ struct Changed {
     /// Entries edited alone, `(owner, subject)`: decided again, and the
     /// pairs of the colliders under their smaller side recalculated.
     entries: Vec<(Node, Node)>,
+    /// Bodies whose link in the parent map changed: the colliders under
+    /// them changed chains, so the entries that name a node of their chains
+    /// are checked again (see `planner::replan_some`).
+    rechained: Vec<Node>,
     /// An edit that can reach any pair (the policy recalculates all).
     everything: bool,
 }
@@ -177,10 +181,6 @@ impl RuleHooks {
     /// Phase 1: what the edits touched starts being watched.
     fn watch_edits(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> Changed {
         let changes = self.decide.rules.take_changes();
-        if changes.parents && self.decide.rules.has_specific() {
-            // The colliders under each side of an entry changed.
-            self.queued.replan.get_or_insert(PlanCause::ParentMap);
-        }
         let nodes = match self.decide.rules.touched_nodes(&changes) {
             Some(nodes) if !self.planned.exhaustive && self.boundary.step > 1 => nodes,
             // The first step reads the whole rule set: it may have been
@@ -241,6 +241,7 @@ impl RuleHooks {
             nodes,
             added: Vec::new(),
             entries: changes.entries().to_vec(),
+            rechained: changes.rechained().iter().map(|&b| Node::Body(b)).collect(),
             everything: changes.everything,
         }
     }
@@ -371,7 +372,11 @@ impl RuleHooks {
         } else {
             self.queued.candidates.extend(under.iter().copied());
             if !(self.queued.candidates.is_empty() && changed.entries.is_empty()) {
-                self.apply_partial_plan(bodies, colliders, graph, &changed.entries);
+                let mut rechained = HashSet::new();
+                for &node in &changed.rechained {
+                    rechained.extend(self.colliders_under(node, bodies, colliders));
+                }
+                self.apply_partial_plan(bodies, colliders, graph, &changed.entries, &rechained);
             }
         }
         under.extend(sides);

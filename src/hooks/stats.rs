@@ -38,9 +38,6 @@ pub enum PlanCause {
     /// a rule set put in place of the whole set, or a change log too long
     /// to follow.
     GlobalEdit,
-    /// A link of the parent map changed while specific entries exist: the
-    /// colliders under each side of an entry changed.
-    ParentMap,
     /// A setting of the hooks changed: the policy, the planner, a
     /// calculator, a pair-created callback, the project's own hooks, or a
     /// full pass began or ended.

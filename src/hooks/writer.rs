@@ -1,6 +1,7 @@
 //! Writing the plan into Rapier's colliders, combined with the project's
 //! own settings, touching only the colliders whose settings differ.
 
+use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
 use super::{ManifoldUpdate, PlanCause, RecalculationPolicy, RuleHooks, own_settings};
@@ -106,6 +107,7 @@ impl RuleHooks {
         colliders: &mut ColliderSet,
         graph: Option<&NarrowPhase>,
         edited: &[(Node, Node)],
+        rechained: &HashSet<ColliderHandle>,
     ) {
         let mut handles = std::mem::take(&mut self.queued.candidates);
         handles.sort_unstable_by_key(|h| h.into_raw_parts());
@@ -130,7 +132,7 @@ impl RuleHooks {
             soft_bodies: self.soft.present,
             loaded: false,
         };
-        let Some(planned) = planner::replan_some(&mut self.planned.plan, &request, &handles, edited)
+        let Some(planned) = planner::replan_some(&mut self.planned.plan, &request, &handles, edited, rechained)
         else {
             // The whole plan plans the candidates too (see `apply_plan`).
             self.queued.candidates = handles;

@@ -1,8 +1,9 @@
 //! The change log: what the edits since the hooks last looked touched.
 
-use super::super::Node;
+use super::super::rapier::prelude::RigidBodyHandle;
+
 use super::records::RecordId;
-use super::super::CollisionRuleSet;
+use super::super::{CollisionRuleSet, Node};
 
 /// What the edits since the last [`CollisionRuleSet::take_changes`] touched,
 /// for the hooks' `OnChange` policy.
@@ -10,8 +11,10 @@ use super::super::CollisionRuleSet;
 pub(crate) struct Changes {
     /// An edit that can affect any pair (the group table, the default rule).
     pub(crate) everything: bool,
-    /// A link of the parent map changed: the colliders under a node changed.
-    pub(crate) parents: bool,
+    /// Bodies whose link in the parent map changed: the chains of the
+    /// colliders under them changed, and with them the sides of the entries
+    /// that name a node of their old or new chains.
+    rechained: Vec<RigidBodyHandle>,
     records: Vec<RecordId>,
     nodes: Vec<Node>,
     /// Nodes an entry edit named as its subject: watched, but their own
@@ -36,6 +39,19 @@ impl Changes {
             && self.nodes.is_empty()
             && self.subjects.is_empty()
             && self.entries.is_empty()
+            && self.rechained.is_empty()
+    }
+
+    /// The bodies whose link in the parent map changed (see the field).
+    pub(crate) fn rechained(&self) -> &[RigidBodyHandle] {
+        &self.rechained
+    }
+
+    pub(super) fn rechain(&mut self, child: RigidBodyHandle) {
+        if !self.everything {
+            self.rechained.push(child);
+            self.cap();
+        }
     }
 
     /// The subjects of entry edits (see the field).
@@ -82,11 +98,12 @@ impl Changes {
         self.nodes = Vec::new();
         self.subjects = Vec::new();
         self.entries = Vec::new();
+        self.rechained = Vec::new();
     }
 
     fn cap(&mut self) {
         let logged = self.records.len() + self.nodes.len() + self.subjects.len();
-        if logged + self.entries.len() > CHANGE_LOG_LIMIT {
+        if logged + self.entries.len() + self.rechained.len() > CHANGE_LOG_LIMIT {
             self.everything();
         }
     }

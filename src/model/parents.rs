@@ -41,7 +41,7 @@ impl CollisionRuleSet {
         }
         let former = self.hierarchy.parent(child);
         self.hierarchy.set_parent(child, parent)?;
-        self.changes.parents = true;
+        self.changes.rechain(child);
         self.changes.node(Node::Body(child));
         // The former parent lost the colliders under `child`.
         if let Some(former) = former.filter(|&f| f != parent) {
@@ -55,7 +55,7 @@ impl CollisionRuleSet {
     /// Makes `child` a root again; returns its former parent.
     pub fn remove_parent(&mut self, child: RigidBodyHandle) -> Option<RigidBodyHandle> {
         let parent = self.hierarchy.remove_parent(child)?;
-        self.changes.parents = true;
+        self.changes.rechain(child);
         self.changes.node(Node::Body(child));
         self.changes.node(Node::Body(parent));
         Some(parent)

@@ -220,11 +220,6 @@ impl CollisionRuleSet {
         }
     }
 
-    /// Whether the rule set holds any specific entry.
-    pub(crate) fn has_specific(&self) -> bool {
-        !self.named.is_empty()
-    }
-
     /// Whether any specific entry names `node`.
     pub(crate) fn is_named(&self, node: Node) -> bool {
         self.named.contains_key(&node)

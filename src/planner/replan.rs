@@ -20,7 +20,10 @@ use super::super::{CollisionRule, Node};
 /// the entries is its class's (a class the plan already has), a personal
 /// `Normal`, or hooked by its own chain; the entries that reach it are
 /// decided as a whole plan decides them (see [`Decisions`](super::decisions::Decisions)), and their
-/// decisions applied. Updates the plan's decisions and bases, and returns
+/// decisions applied. `rechained` are the colliders whose chains a
+/// parent-map edit changed: every entry that names a node of their new
+/// chains is checked again, since they may now be on its sides (those of
+/// their old chains only lost them, which leaves a decision exact). Updates the plan's decisions and bases, and returns
 /// the colliders' plans to write. `None` (plan everything again) when a
 /// collider needs what only a whole plan gives: a class no native collider
 /// has, a personal rule other than the plan's kind, settings outside the
@@ -30,6 +33,7 @@ pub(crate) fn replan_some(
     request: &Request<'_>,
     handles: &[ColliderHandle],
     edited: &[(Node, Node)],
+    rechained: &HashSet<ColliderHandle>,
 ) -> Option<Vec<(ColliderHandle, ColliderPlan)>> {
     let Request {
         rules,
@@ -60,6 +64,9 @@ pub(crate) fn replan_some(
                 if emptied || old.is_some_and(|o| o.has_personal) && plan.personal_restricts {
                     return None;
                 }
+            }
+            if rechained.contains(&handle) {
+                moved.insert(handle);
             }
             if seen.insert(handle) {
                 asked.push(handle);

@@ -190,7 +190,8 @@ const ALIKE_SHARE: usize = 90;
 /// One step of a world that changes every step: objects come (with every
 /// kind of body), get rules of every kind (specific entries that Rapier's
 /// groups decide and those the hook carries, personal rules, groups), the
-/// project sets layers on some, objects go, and the world steps once.
+/// project sets layers on some, bodies are parented and unparented, objects
+/// go, and the world steps once.
 fn churn_round() -> impl Strategy<Value = Vec<Edit>> {
     let n = 0..256usize;
     let arrive = (-1.5f32..1.5, 0.4f32..3.0, 0..KINDS.len())
@@ -207,6 +208,9 @@ fn churn_round() -> impl Strategy<Value = Vec<Edit>> {
         1 => (n.clone(), 0..LAYERS.len(), 0..LAYERS.len())
             .prop_map(|(c, m, f)| Edit::ProjectSolver(c, m, f)),
         1 => (n.clone(), n.clone()).prop_map(|(c, b)| Edit::MoveCollider(c, b)),
+        // Riders onto platforms and off again: chains change under entries.
+        1 => (n.clone(), n.clone()).prop_map(|(c, p)| Edit::Parent(c, p)),
+        1 => n.clone().prop_map(Edit::Unparent),
     ];
     let leave = prop_oneof![
         2 => n.clone().prop_map(Edit::RemoveBody),
@@ -656,4 +660,3 @@ fn a_soft_body_cut_before_the_hooks_saw_it_keeps_the_rules_given_to_its_root() {
     }
     run.apply(&Step(2));
 }
-

@@ -539,3 +539,66 @@ fn so_many_removals_in_one_step_that_their_log_gives_up_plan_everything() {
     let y = scene.y(cube);
     assert!((y - 0.5).abs() < 0.05, "the cube lands on the floor: y = {y}");
 }
+
+#[test]
+fn a_rider_parented_under_an_entry_is_planned_alone_as_a_whole_plan_plans_it() {
+    // The floor's record says `NoPair` about a dynamic platform (a bit the
+    // platform carries). A rider that carries a bit of its own (its own
+    // entry about a far block) is parented to the platform: now on the
+    // floor entry's side, it cannot carry both bits, so that entry is
+    // checked again, as a whole plan checks every entry it meets. Only the
+    // colliders the edit reaches are planned, their settings are a whole
+    // plan's (the oracle's, which plans everything every step), and the
+    // rider passes through the floor.
+    let build = |oracle: bool| {
+        let mut scene = Scene::new();
+        let mut hooks = RuleHooks::default();
+        hooks.set_exhaustive(oracle);
+        let (platform, _) = scene.cube(6.0, 3.0);
+        let (rider, _) = scene.cube(0.0, 1.5);
+        let block = scene.world.insert_body(RigidBodyBuilder::fixed().translation(at(-20.0, 0.5)));
+        scene.world.insert_collider(cuboid(0.5, 0.5, 0.5), Some(block));
+        // Props the entries reach, which a whole plan would plan again.
+        for i in 0..8 {
+            let (prop, _) = scene.cube(-8.0 - 2.0 * i as f32, 0.5);
+            hooks.rules_mut().set_specific(prop, block, NoPair);
+        }
+        hooks.rules_mut().set_specific(scene.ground, platform, NoPair);
+        hooks.rules_mut().set_specific(rider, block, NoPair);
+        (scene, hooks, platform, rider)
+    };
+    let settings = |scene: &Scene| -> Vec<_> {
+        let mut all: Vec<_> = scene
+            .world
+            .colliders
+            .iter()
+            .map(|(h, c)| (h, c.collision_groups(), c.solver_groups(), c.active_hooks()))
+            .collect();
+        all.sort_by_key(|s| s.0.into_raw_parts());
+        all
+    };
+    let (mut scene, mut hooks, platform, rider) = build(false);
+    let (mut whole, mut oracle, _, _) = build(true);
+    for _ in 0..60 {
+        hooks.step(&mut scene.world);
+        oracle.step(&mut whole.world);
+    }
+    let landed = scene.y(rider);
+    assert!((landed - 0.5).abs() < 0.05, "the rider stands on the floor: y = {landed}");
+    hooks.rules_mut().set_parent(rider, platform).expect("no cycle");
+    oracle.rules_mut().set_parent(rider, platform).expect("no cycle");
+    hooks.step(&mut scene.world);
+    oracle.step(&mut whole.world);
+    let stats = hooks.stats();
+    assert_eq!(stats.full_plan, None, "a parent edit plans what it reaches: {stats:?}");
+    assert!(
+        stats.planned_colliders <= 3,
+        "the rider, the platform and the floor at most: {stats:?}"
+    );
+    assert_eq!(settings(&scene), settings(&whole), "the settings a whole plan writes");
+    for _ in 0..60 {
+        hooks.step(&mut scene.world);
+    }
+    let fell = scene.y(rider);
+    assert!(fell < -1.0, "under the platform, the rider passes through the floor: y = {fell}");
+}

@@ -270,15 +270,32 @@ fn a_forgotten_call_fails_loudly_and_names_it() {
     }
 }
 
-/// `world.step()` (Rapier without the hooks) between two steps of the hooks
-/// drops every rule the hook decides for that step: a debug build panics at
-/// the next step of the hooks, naming the fix (`docs/semantics.md`,
+/// Rapier stepping the world between two steps of the hooks: without them
+/// (`world.step()`: every rule the hook decides is dropped for that step),
+/// or with them but without their `prepare` (`world.step_with_events(&hooks,
+/// ..)`: the hook answers, so no rule looks broken to the witness, but
+/// nothing that changed was planned). A debug build panics at the next step
+/// of the hooks, naming what happened and the fix; a release build warns
+/// once and says so in the stats of that step (`docs/semantics.md`,
 /// "Stepping without the hooks"). Stepping with the hooks throughout, with
 /// the same scene, says nothing.
 #[test]
-fn stepping_rapier_without_the_hooks_is_caught_at_the_next_step() {
+fn stepping_rapier_without_the_hooks_or_their_prepare_is_caught_at_the_next_step() {
     use super::{cube, slab};
-    for rule in [CollisionRule::NoContacts, CollisionRule::NoResponse] {
+    use CollisionRule::{NoContacts, NoResponse};
+    type Misstep = fn(&mut PhysicsWorld, &RuleHooks);
+    // (what happened, the rule, the step, what the message says)
+    let cases: [(&str, CollisionRule, Misstep, &str); 3] = [
+        ("world.step(), NoContacts", NoContacts, |w, _| w.step(), "never `world.step()`"),
+        ("world.step(), NoResponse", NoResponse, |w, _| w.step(), "never `world.step()`"),
+        (
+            "the hooks given to Rapier without prepare",
+            NoContacts,
+            |w, hooks| w.step_with_events(hooks, &()),
+            "without their `prepare`",
+        ),
+    ];
+    for (name, rule, misstep, says) in cases {
         let build = || {
             let mut world = PhysicsWorld::new();
             let ground = world.insert_body(RigidBodyBuilder::fixed());
@@ -286,7 +303,8 @@ fn stepping_rapier_without_the_hooks_is_caught_at_the_next_step() {
             let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 1.0)));
             world.insert_collider(cube(0.5), Some(ghost));
             let mut hooks = RuleHooks::default();
-            // Every collider hooked: the rule is the hook's alone.
+            // Every collider hooked: the rule is the hook's alone, and
+            // Rapier asks the hook about the pair.
             hooks.set_planner(false);
             hooks.rules_mut().set_specific(ghost, ground, rule);
             (world, hooks)
@@ -294,21 +312,22 @@ fn stepping_rapier_without_the_hooks_is_caught_at_the_next_step() {
         let (mut world, mut hooks) = build();
         for _ in 0..40 {
             hooks.step(&mut world);
-            assert!(!hooks.stats().stepped_without_hooks, "{rule:?}: stepped with the hooks");
+            assert!(!hooks.stats().stepped_without_hooks, "{name}: stepped with the hooks");
         }
         let (mut world, mut hooks) = build();
         for _ in 0..3 {
             hooks.step(&mut world);
         }
-        world.step();
+        misstep(&mut world, &hooks);
         if !cfg!(debug_assertions) {
-            // A release build warns once and says so in the stats.
             hooks.step(&mut world);
             assert!(
                 hooks.stats().stepped_without_hooks,
-                "{rule:?}: stepping without the hooks went unnoticed: {:?}",
+                "{name}: went unnoticed: {:?}",
                 hooks.stats()
             );
+            hooks.step(&mut world);
+            assert!(!hooks.stats().stepped_without_hooks, "{name}: said for its step only");
             continue;
         }
         let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
@@ -317,60 +336,10 @@ fn stepping_rapier_without_the_hooks_is_caught_at_the_next_step() {
         let message = outcome
             .err()
             .and_then(|panic| panic.downcast::<String>().ok())
-            .unwrap_or_else(|| panic!("{rule:?}: stepping without the hooks went unnoticed"));
+            .unwrap_or_else(|| panic!("{name}: went unnoticed"));
         assert!(
-            message.contains("hooks.step(&mut world)") && message.contains("never `world.step()`"),
-            "{rule:?}: the message names the fix: {message}"
+            message.contains(says) && message.contains("hooks.step(&mut world)"),
+            "{name}: the message names what happened and the fix: {message}"
         );
     }
-}
-
-/// The hooks given to Rapier's step directly, without their `prepare`
-/// (`world.step_with_events(&hooks, ..)`): the hook answers, so no rule
-/// looks broken to the witness, but nothing that changed was planned. The
-/// next step of the hooks says so, naming the fix (`docs/semantics.md`,
-/// "Stepping without the hooks").
-#[test]
-fn stepping_rapier_with_the_hooks_but_without_prepare_is_caught_at_the_next_step() {
-    use super::{cube, slab};
-    let build = || {
-        let mut world = PhysicsWorld::new();
-        let ground = world.insert_body(RigidBodyBuilder::fixed());
-        world.insert_collider(slab(10.0, 0.5), Some(ground));
-        let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 1.0)));
-        world.insert_collider(cube(0.5), Some(ghost));
-        let mut hooks = RuleHooks::default();
-        // Every collider hooked: Rapier asks the hook about the pair.
-        hooks.set_planner(false);
-        hooks.rules_mut().set_specific(ghost, ground, CollisionRule::NoContacts);
-        (world, hooks)
-    };
-    let (mut world, mut hooks) = build();
-    for _ in 0..3 {
-        hooks.step(&mut world);
-        assert!(!hooks.stats().stepped_without_hooks, "stepped with the hooks");
-    }
-    world.step_with_events(&hooks, &());
-    if !cfg!(debug_assertions) {
-        hooks.step(&mut world);
-        assert!(
-            hooks.stats().stepped_without_hooks,
-            "a step without prepare went unnoticed: {:?}",
-            hooks.stats()
-        );
-        hooks.step(&mut world);
-        assert!(!hooks.stats().stepped_without_hooks, "said once, for the step it happened in");
-        return;
-    }
-    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        hooks.step(&mut world);
-    }));
-    let message = outcome
-        .err()
-        .and_then(|panic| panic.downcast::<String>().ok())
-        .unwrap_or_else(|| panic!("a step without prepare went unnoticed"));
-    assert!(
-        message.contains("without their `prepare`") && message.contains("hooks.step(&mut world)"),
-        "the message names what happened and the fix: {message}"
-    );
 }

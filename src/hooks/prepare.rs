@@ -368,6 +368,11 @@ impl RuleHooks {
             .touched
             .extend(self.queued.candidates.iter().copied());
         if let Some(cause) = self.queued.replan {
+            // The colliders under the touched nodes are planned with the
+            // rest: one whose last rule this step's edits took (so the look
+            // let it go) goes back to Rapier's defaults, as in a plan of a
+            // few.
+            self.queued.candidates.extend(under.iter().copied());
             self.apply_plan(bodies, colliders, graph, cause);
         } else {
             self.queued.candidates.extend(under.iter().copied());

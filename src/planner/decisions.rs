@@ -36,8 +36,9 @@ pub(crate) struct Base {
     /// Its class by its chain (whether or not its group is native).
     pub(crate) class: Option<Class>,
     pub(crate) dynamic: bool,
-    /// Its body: with the parent map (whose edits plan everything), what
-    /// its chain is.
+    /// Its body: a collider moved to another body has another base, and its
+    /// entries are checked again (a parent-map edit, which changes chains
+    /// without changing bodies, names its colliders to the planner itself).
     pub(crate) body: Option<RigidBodyHandle>,
 }
 

@@ -602,3 +602,38 @@ fn a_rider_parented_under_an_entry_is_planned_alone_as_a_whole_plan_plans_it() {
     let fell = scene.y(rider);
     assert!(fell < -1.0, "under the platform, the rider passes through the floor: y = {fell}");
 }
+
+/// Found by `the_upkeep_sees_what_a_full_pass_sees_under_churn` at sixteen
+/// times its cases: a one-way surface removed in a step that plans
+/// everything (here the project says its settings changed) left the
+/// contact-modification flag the crate wrote on the surface's collider,
+/// which no rule reached any more, so no plan wrote it again.
+#[test]
+fn a_collider_whose_last_rule_goes_in_a_whole_plans_step_gets_rapiers_defaults_back() {
+    use super::rules::OneWay;
+    let modifies = |scene: &Scene, c: ColliderHandle| {
+        scene.world.colliders[c]
+            .active_hooks()
+            .contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+    };
+    for whole in [false, true] {
+        let mut scene = Scene::new();
+        let (_, surface) = scene.cube(0.0, 0.5);
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_one_way(surface, Some(OneWay::new(at(0.0, 1.0))));
+        hooks.step(&mut scene.world);
+        assert!(modifies(&scene, surface), "whole plan {whole}: the one-way surface is modified");
+        hooks.rules_mut().set_one_way(surface, None);
+        if whole {
+            hooks.project_settings_changed();
+        }
+        hooks.step(&mut scene.world);
+        let stats = hooks.stats();
+        assert_eq!(stats.full_plan.is_some(), whole, "{stats:?}");
+        assert!(
+            !modifies(&scene, surface),
+            "whole plan {whole}: no rule is left, nor the flag: {:?}",
+            scene.world.colliders[surface].active_hooks()
+        );
+    }
+}

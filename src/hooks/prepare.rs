@@ -367,22 +367,18 @@ impl RuleHooks {
         self.queued
             .touched
             .extend(self.queued.candidates.iter().copied());
+        // The colliders under the touched nodes are planned, by a plan of a
+        // few or with the rest: one whose last rule this step's edits took
+        // (so the look let it go) goes back to Rapier's defaults either way.
+        self.queued.candidates.extend(under.iter().copied());
         if let Some(cause) = self.queued.replan {
-            // The colliders under the touched nodes are planned with the
-            // rest: one whose last rule this step's edits took (so the look
-            // let it go) goes back to Rapier's defaults, as in a plan of a
-            // few.
-            self.queued.candidates.extend(under.iter().copied());
             self.apply_plan(bodies, colliders, graph, cause);
-        } else {
-            self.queued.candidates.extend(under.iter().copied());
-            if !(self.queued.candidates.is_empty() && changed.entries.is_empty()) {
-                let mut rechained = HashSet::new();
-                for &node in &changed.rechained {
-                    rechained.extend(self.colliders_under(node, bodies, colliders));
-                }
-                self.apply_partial_plan(bodies, colliders, graph, &changed.entries, &rechained);
+        } else if !(self.queued.candidates.is_empty() && changed.entries.is_empty()) {
+            let mut rechained = HashSet::new();
+            for &node in &changed.rechained {
+                rechained.extend(self.colliders_under(node, bodies, colliders));
             }
+            self.apply_partial_plan(bodies, colliders, graph, &changed.entries, &rechained);
         }
         under.extend(sides);
         under

@@ -275,6 +275,10 @@ impl RuleHooks {
                 self.queued.replan.get_or_insert(PlanCause::NewClass);
             }
         }
+        // What the crate wrote on a collider the rules let go of goes back
+        // to the project's settings: an edit that touched its node plans it
+        // anyway, but a global edit names no node.
+        self.queued.candidates.extend(look.released.iter().copied());
         if !(look.removed_colliders.is_empty() && look.released.is_empty()) {
             self.planned.recount = true;
         }

@@ -253,10 +253,26 @@ fn upkeep_sees_what_a_full_pass_sees(
     cubes: &[(f32, f32, usize)],
     edits: &[Edit],
 ) -> Result<(), TestCaseError> {
-        let mut upkeep = Run::new(cubes, true, false);
+    let mut upkeep = Run::new(cubes, true, false);
     let mut oracle = Run::new(cubes, true, false);
     oracle.hooks.set_exhaustive(true);
+    let mut parted = false;
     in_lockstep(&mut upkeep, &mut oracle, edits, |upkeep, oracle| {
+        // The poses may part in the last bits: with a one-way surface in
+        // the world (see below), and where Rapier's parallel pipeline steps
+        // soft bodies, which it does differently from run to run
+        // (`docs/semantics.md`, "Soft bodies"). A soft body pulled apart
+        // may then tear a step sooner in one run, and the same edits name
+        // other objects in each: the runs are compared until then.
+        let may_part =
+            upkeep.one_ways || (cfg!(feature = "parallel") && upkeep.has_soft_bodies());
+        if !upkeep.names_alike(oracle) {
+            prop_assert!(may_part, "the runs name other objects, yet their poses may not part");
+            parted = true;
+        }
+        if parted {
+            return Ok(());
+        }
         // The oracle plans, and so marks modified, every collider every
         // step: Rapier's broad phase refits other AABBs when, so a pair
         // without contacts may be in one graph only (see
@@ -265,10 +281,26 @@ fn upkeep_sees_what_a_full_pass_sees(
         prop_assert_eq!(upkeep_both, oracle_both, "live pairs differ");
         // The upkeep writes the contact-modification flag where a full pass
         // does: on every collider under a one-way node (of the colliders in
-        // both: once the poses part, a soft body may tear in one only).
+        // both: once the poses part, a soft body may tear in one only). A
+        // soft surface also has it where it is hooked, and which side of an
+        // entry is hooked follows the pairs each side has: once the poses
+        // part, soft surfaces are left out.
         let (upkeep_flags, oracle_flags) = (modifying(upkeep), modifying(oracle));
+        let parted_poses = upkeep.poses() != oracle.poses();
+        let compared = |(c, _): &(Raw, bool)| -> bool {
+            let handle = ColliderHandle::from_raw_parts(c.0, c.1);
+            !parted_poses
+                || [upkeep, oracle].iter().all(|run| {
+                    let collider = run.world.colliders.get(handle);
+                    collider.is_some_and(|c| c.deformable_mesh_ref().is_none())
+                })
+        };
         let in_both = |of: &[(Raw, bool)], other: &[(Raw, bool)]| -> Vec<(Raw, bool)> {
-            of.iter().filter(|(c, _)| other.iter().any(|(o, _)| o == c)).copied().collect()
+            of.iter()
+                .filter(|(c, _)| other.iter().any(|(o, _)| o == c))
+                .filter(|f| compared(f))
+                .copied()
+                .collect()
         };
         prop_assert_eq!(
             in_both(&upkeep_flags, &oracle_flags),
@@ -278,9 +310,10 @@ fn upkeep_sees_what_a_full_pass_sees(
         // Rapier solves a pair whose contacts a hook may modify through
         // contacts rebuilt in the world's frame, and the oracle marks every
         // collider modified every step: with a one-way surface in the world
-        // the two runs part in the last bits of the poses, so the physics is
-        // compared while there is none.
-        if upkeep.one_ways {
+        // the two runs part in the last bits of the poses. So the physics is
+        // compared where the poses may not part (soft bodies included, in
+        // the build without `parallel`, which `cargo test` runs).
+        if may_part {
             return Ok(());
         }
         prop_assert_eq!(upkeep.touching(), oracle.touching(), "touching pairs differ");
@@ -619,6 +652,37 @@ fn a_piece_whose_source_was_removed_before_the_step_keeps_its_rules() {
     ];
     planner_on_off_alike(&cubes, &edits);
     planned_alike(&cubes, &edits, |_| Ok(()));
+}
+
+/// Found by `the_upkeep_sees_what_a_full_pass_sees` at 2,048 cases: a
+/// rule taken away in the step of an edit that plans everything (a group
+/// table edit names no node) left what the crate wrote on the collider it
+/// reached (a one-way surface's contact-modification flag). The rules no
+/// longer reached it, so the look let it go, and the whole plan only reset
+/// the colliders it still watched. Each row takes a rule of another kind
+/// away that way (the one-way row is the one that failed; the others keep
+/// an empty record, which the look keeps watching): the collider gets the
+/// project's settings back, as in the full pass.
+#[test]
+fn a_rule_taken_away_with_a_global_edit_gives_the_collider_back() {
+    use super::world::Edit::*;
+    let global = || InSet(vec![], CollisionRule::Defer, CollisionRule::Defer, false);
+    let rows: [(&str, Vec<Edit>, Edit); 4] = [
+        ("one-way", vec![OneWay(1, 0)], OneWay(1, 3)),
+        ("personal", vec![Personal(1, CollisionRule::NoPair)], Personal(1, CollisionRule::Defer)),
+        ("specific", vec![Specific(1, 2, CollisionRule::NoContacts)], RemoveSpecific(1, 2)),
+        (
+            "group",
+            vec![GroupRule(1, 2, CollisionRule::NoPair), Group(1, Some(1))],
+            Group(1, None),
+        ),
+    ];
+    for (what, give, take) in rows {
+        let cubes = [(0.0, 0.4, 0); 3];
+        let edits: Vec<Edit> = give.into_iter().chain([Step(1), take, global(), Step(1)]).collect();
+        eprintln!("row: {what}");
+        planned_alike(&cubes, &edits, |_| Ok(()));
+    }
 }
 
 /// The world stepped through `edits` with the planner on and off: the

@@ -410,6 +410,11 @@ impl Run {
             && self.softs == other.softs
     }
 
+    /// Whether a soft body was ever added to the world.
+    pub fn has_soft_bodies(&self) -> bool {
+        !self.softs.is_empty()
+    }
+
     /// The soft body an edit names by `i` (among those added), if it is
     /// still in the world.
     fn soft(&self, i: usize) -> Option<(SoftBodyHandle, &SoftBody)> {

@@ -54,9 +54,12 @@ pub enum PlanCause {
     /// gives: a class (a group, with dynamic or other members) no planned
     /// collider had, or whose last member left, since the groups' settings
     /// follow which classes have members; a personal rule that came or went
-    /// while some collider's chain says `NoPair` or `NoResponse`, since
-    /// whether Rapier's groups say that depends on every collider's
-    /// personal rules; or a pinned pair.
+    /// and changed the least restrictive first personal rule above some
+    /// depth of the chains (a shallower `Normal` where chains say `NoPair`
+    /// or `NoResponse` deeper, or the last of them gone), since whether
+    /// Rapier's groups say a personal `NoPair` or `NoResponse` depends on
+    /// it; or a pinned pair. More colliders with the personal rules the
+    /// world already has are planned alone.
     NewClass,
     /// The world came to hold soft bodies, or stopped holding any: their
     /// solver reads no solver groups, so `NoResponse` moves between Rapier's

@@ -96,7 +96,7 @@ impl ColliderPlan {
     }
 
     /// The plan of a dynamic collider native by its personal `rule` (see
-    /// [`personal_natives`](super::personal::personal_natives)): every pair it has with a native collider gets
+    /// [`native_personal`](super::personal::native_personal)): every pair it has with a native collider gets
     /// `rule`, whatever the groups say. Its memberships are every bit, which
     /// every filter that is not empty holds (as a hooked collider's do);
     /// its filters say `rule`: none for `NoPair` (collision groups), none

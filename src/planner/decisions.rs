@@ -31,8 +31,8 @@ pub(crate) struct Base {
     pub(crate) plan: ColliderPlan,
     /// Native by a personal rule (never carries a bit).
     pub(crate) personal: bool,
-    /// Its chain carries a personal rule.
-    pub(crate) has_personal: bool,
+    /// The first personal rule of its chain, and its depth.
+    pub(crate) first_personal: Option<(CollisionRule, usize)>,
     /// Its class by its chain (whether or not its group is native).
     pub(crate) class: Option<Class>,
     pub(crate) dynamic: bool,

@@ -16,7 +16,7 @@
 //! of `docs/semantics.md`. A collider of a dynamic body whose chain's
 //! personal rules all say one `Normal`, `NoResponse` or `NoPair` is native
 //! too, where Rapier's test gives its pairs that rule (see
-//! [`personal_natives`]). A pair with a hooked collider is decided by the
+//! [`native_personal`]). A pair with a hooked collider is decided by the
 //! hook, so hooked colliders carry permissive groups and pass every native
 //! test.
 //!
@@ -36,7 +36,7 @@ use super::class::{Class, native_class};
 use super::collider_plan::ColliderPlan;
 use super::decisions::{Base, Decisions, Facts};
 use super::group_settings::{GroupSettings, default_refuses};
-use super::personal::{first_personal, personal_natives, personal_rule};
+use super::personal::{PersonalDepths, first_personal, native_personal};
 use super::room::Room;
 use super::super::model::{HandleMap, dynamic_body};
 use super::super::world::{PairKey, Settings};
@@ -60,11 +60,9 @@ pub(crate) struct Plan {
     /// plan gives no group a bit and relies on no collision type, so that
     /// no project setting can conflict with it.
     pub(crate) room: Option<(Room, usize)>,
-    /// Some dynamic collider's chain says a personal `NoPair` or
-    /// `NoResponse`, which Rapier's groups say only where no collider says
-    /// a less restrictive one closer to its root: a change of who carries
-    /// personal rules is then planned with everything.
-    pub(super) personal_restricts: bool,
+    /// The planned colliders' first personal rules, by depth: whether
+    /// Rapier's groups say a collider's personal rule depends on them.
+    pub(super) personal_depths: PersonalDepths,
     /// Each planned collider's plan before the entries (see [`Base`]).
     pub(super) base: HashMap<ColliderHandle, Base>,
     /// How each specific entry is decided, kept from plan to plan.
@@ -80,16 +78,36 @@ pub(crate) struct Plan {
 impl Plan {
     /// Forgets `collider` (removed, or no longer reached); `true` if the
     /// whole plan must be made again: the last member of a class left (the
-    /// groups' settings follow which classes have members), or who carries
-    /// personal rules changed where that decides them (see
-    /// [`Plan::personal_restricts`]).
+    /// groups' settings follow which classes have members), or its personal
+    /// rule changed what the others' read (see [`Plan::personal_moved`]).
     pub(crate) fn forget(&mut self, collider: ColliderHandle) -> bool {
         self.colliders.remove(collider);
         let Some(base) = self.base.remove(&collider) else {
             return false;
         };
         let emptied = base.class.is_some_and(|class| self.count_out(class));
-        emptied || (self.personal_restricts && base.has_personal)
+        self.personal_moved(base.first_personal, None) || emptied
+    }
+
+    /// A planned collider's first personal rule went from `old` to `new`;
+    /// `true` if that changes whether Rapier's groups can say another
+    /// collider's personal rule (the least restrictive first personal rule
+    /// above some depth), which only a whole plan can follow.
+    pub(super) fn personal_moved(
+        &mut self,
+        old: Option<(CollisionRule, usize)>,
+        new: Option<(CollisionRule, usize)>,
+    ) -> bool {
+        if old == new {
+            return false;
+        }
+        // More colliders of kinds already counted (the common case: a
+        // spawner's ghosts) change nothing the others read.
+        let depths = &mut self.personal_depths;
+        let before = depths.changes_kinds(old, new).then(|| depths.shallower());
+        depths.count(old, false);
+        depths.count(new, true);
+        before.is_some_and(|before| depths.shallower() != before)
     }
 
     /// One member less of `class`; `true` if that was its last (a default
@@ -221,17 +239,26 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
 
     // Dynamic colliders whose chains say one personal rule (see
     // `personal_rule`) are native where Rapier's test gives each of their
-    // pairs the rule the personal stage gives it.
-    let personal = personal_natives(request, &classes);
-    // Whether Rapier's groups say a personal `NoPair` or `NoResponse`
-    // depends on every collider's personal rules: while one is said
-    // (natively or by the hook), a change of who carries personal rules is
-    // planned with everything.
-    plan.personal_restricts = classes.iter().any(|&(h, class, dynamic)| {
-        class.is_none()
-            && dynamic
-            && personal_rule(rules, bodies, colliders, h).is_some_and(|(r, _)| r != CollisionRule::Normal)
-    });
+    // pairs the rule the personal stage gives it, which depends on every
+    // collider's first personal rule: counted once, kept with the plan.
+    let mut firsts: HashMap<ColliderHandle, (CollisionRule, usize)> = HashMap::new();
+    for &(handle, class, _) in &classes {
+        if class.is_none() {
+            if let Some(first) = first_personal(rules, bodies, colliders, handle) {
+                plan.personal_depths.count(Some(first), true);
+                firsts.insert(handle, first);
+            }
+        }
+    }
+    let shallower = plan.personal_depths.shallower();
+    let pinned = request.pinned_colliders();
+    let personal: HashMap<ColliderHandle, CollisionRule> = classes
+        .iter()
+        .filter(|&&(handle, class, _)| class.is_none() && firsts.contains_key(&handle))
+        .filter_map(|&(handle, _, dynamic)| {
+            native_personal(request, &shallower, &pinned, handle, dynamic).map(|r| (handle, r))
+        })
+        .collect();
 
     // Hooked by their own chains or groups.
     let mut hooked: HashSet<ColliderHandle> = classes
@@ -274,7 +301,7 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
         };
         let personal = personal.contains_key(&handle) && !entry.hooked();
         let body = colliders.get(handle).and_then(|c| c.parent());
-        let has_personal = first_personal(rules, bodies, colliders, handle).is_some();
+        let first_personal = firsts.get(&handle).copied();
         if let Some(class) = class {
             *plan.class_counts.entry(class).or_default() += 1;
         }
@@ -283,7 +310,7 @@ pub(crate) fn plan(request: &Request<'_>) -> Plan {
             Base {
                 plan: entry,
                 personal,
-                has_personal,
+                first_personal,
                 class,
                 dynamic,
                 body,

@@ -7,11 +7,11 @@ use super::super::rapier::prelude::*;
 use super::class::{Class, native_class};
 use super::collider_plan::ColliderPlan;
 use super::decisions::{Base, Facts, Footprint};
-use super::personal::{first_personal, personal_rule};
+use super::personal::{Shallower, first_personal, native_personal};
 use super::plan::{Plan, Request, ordered};
 use super::room::Room;
 use super::super::model::dynamic_body;
-use super::super::{CollisionRule, Node};
+use super::super::Node;
 
 /// Plans `handles` alone, against the rest of `plan`, at the cost of their
 /// own colliders, the specific entries that reach them and, where an
@@ -26,8 +26,9 @@ use super::super::{CollisionRule, Node};
 /// their old chains only lost them, which leaves a decision exact). Updates the plan's decisions and bases, and returns
 /// the colliders' plans to write. `None` (plan everything again) when a
 /// collider needs what only a whole plan gives: a class no native collider
-/// has, a personal rule other than the plan's kind, settings outside the
-/// room the plan took, or a pinned pair.
+/// has, a class losing its last member, a personal rule that changes
+/// whether the groups can say others' (see [`Plan::personal_moved`]),
+/// settings outside the room the plan took, or a pinned pair.
 pub(crate) fn replan_some(
     plan: &mut Plan,
     request: &Request<'_>,
@@ -45,6 +46,9 @@ pub(crate) fn replan_some(
         return None;
     }
     let pinned = request.pinned_colliders();
+    // What decides whether the groups say a personal rule: any change of it
+    // is planned whole (see `put_base`), so it holds for every collider here.
+    let shallower = plan.personal_depths.shallower();
     let mut asked: Vec<ColliderHandle> = Vec::with_capacity(handles.len());
     let mut seen: HashSet<ColliderHandle> = HashSet::new();
     // Asked colliders new to the plan, or whose plan before the entries or
@@ -54,16 +58,13 @@ pub(crate) fn replan_some(
         if pinned.contains(&handle) {
             return None;
         }
-        if let Some(base) = base_of(plan, request, handle)? {
-            let old = put_base(plan, handle, base);
+        if let Some(base) = base_of(plan, request, &shallower, &pinned, handle)? {
+            let (old, whole) = put_base(plan, handle, base);
+            if whole {
+                return None;
+            }
             if old != Some(base) {
                 moved.insert(handle);
-                // The last member of its class left, or its personal rule
-                // went while that decides others' (see `Plan::forget`).
-                let emptied = old.and_then(|o| o.class).is_some_and(|c| plan.count_out(c));
-                if emptied || old.is_some_and(|o| o.has_personal) && plan.personal_restricts {
-                    return None;
-                }
             }
             if rechained.contains(&handle) {
                 moved.insert(handle);
@@ -156,8 +157,10 @@ pub(crate) fn replan_some(
         for c in under {
             if seen.insert(c) {
                 if plan.base.get(&c).is_none() {
-                    let base = base_of(plan, request, c)??;
-                    put_base(plan, c, base);
+                    let base = base_of(plan, request, &shallower, &pinned, c)??;
+                    if put_base(plan, c, base).1 {
+                        return None;
+                    }
                 }
                 asked.push(c);
             }
@@ -175,22 +178,34 @@ pub(crate) fn replan_some(
     Some(planned)
 }
 
-/// Gives `handle` its plan before the entries, counted in its class if it
-/// changed (the caller counts the old one out); returns the old one.
-fn put_base(plan: &mut Plan, handle: ColliderHandle, base: Base) -> Option<Base> {
+/// Gives `handle` its plan before the entries, counted in its class and by
+/// its first personal rule; returns the old one, and whether only a whole
+/// plan can follow the change: the last member of its old class left (the
+/// groups' settings follow which classes have members), or its personal
+/// rule changed what the others read (see [`Plan::personal_moved`]).
+fn put_base(plan: &mut Plan, handle: ColliderHandle, base: Base) -> (Option<Base>, bool) {
     let old = plan.base.insert(handle, base);
-    if old != Some(base) {
-        if let Some(class) = base.class {
-            *plan.class_counts.entry(class).or_default() += 1;
-        }
+    if old == Some(base) {
+        return (old, false);
     }
-    old
+    if let Some(class) = base.class {
+        *plan.class_counts.entry(class).or_default() += 1;
+    }
+    let emptied = old.and_then(|o| o.class).is_some_and(|c| plan.count_out(c));
+    let personal = plan.personal_moved(old.and_then(|o| o.first_personal), base.first_personal);
+    (old, emptied || personal)
 }
 
 /// The plan of `handle` before the entries, against the rest of `plan`:
 /// `Some(None)` for a collider no longer in the world, `None` where only a
 /// whole plan can say (see [`replan_some`]).
-fn base_of(plan: &Plan, request: &Request<'_>, handle: ColliderHandle) -> Option<Option<Base>> {
+fn base_of(
+    plan: &Plan,
+    request: &Request<'_>,
+    shallower: &Shallower,
+    pinned: &HashSet<ColliderHandle>,
+    handle: ColliderHandle,
+) -> Option<Option<Base>> {
     let Request {
         rules,
         bodies,
@@ -200,30 +215,23 @@ fn base_of(plan: &Plan, request: &Request<'_>, handle: ColliderHandle) -> Option
     let Some(collider) = colliders.get(handle) else {
         return Some(None);
     };
-    // A personal rule: native by `Normal` as the plan has it; any other
-    // native personal rule depends on every collider's personal rules.
-    let personal = first_personal(rules, bodies, colliders, handle)
-        .map(|_| personal_rule(rules, bodies, colliders, handle).map(|(rule, _)| rule));
-    let restricts = personal
-        .flatten()
-        .is_some_and(|r| r != CollisionRule::Normal);
-    if personal.is_some() && (plan.personal_restricts || restricts) {
-        return None;
-    }
     let own = (request.own)(handle, collider);
     if plan.room.is_some_and(|(room, _)| !room.holds(own)) {
         // Its settings take bits or types the plan gave away: look again.
         return None;
     }
     let dynamic = dynamic_body(bodies, collider.parent());
-    let mut personal_native = false;
+    let first_personal = first_personal(rules, bodies, colliders, handle);
+    let mut personal = false;
     let class = native_class(rules, bodies, colliders, handle, dynamic);
     let entry = match class {
-        None if dynamic && personal.flatten() == Some(CollisionRule::Normal) => {
-            personal_native = true;
-            ColliderPlan::personal(CollisionRule::Normal)
-        }
-        None => ColliderPlan::hooked_plan(dynamic),
+        None => match native_personal(request, shallower, pinned, handle, dynamic) {
+            Some(rule) => {
+                personal = true;
+                ColliderPlan::personal(rule)
+            }
+            None => ColliderPlan::hooked_plan(dynamic),
+        },
         Some(class) if class == Class::unreached(dynamic) => {
             match plan.classes.get(&class) {
                 Some(entry) => *entry,
@@ -236,8 +244,8 @@ fn base_of(plan: &Plan, request: &Request<'_>, handle: ColliderHandle) -> Option
     };
     Some(Some(Base {
         plan: entry,
-        personal: personal_native,
-        has_personal: personal.is_some(),
+        personal,
+        first_personal,
         class,
         dynamic,
         body: collider.parent(),

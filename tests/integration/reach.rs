@@ -3,7 +3,7 @@
 //! Rapier has it, and the full passes say why they run.
 
 use super::rapier::prelude::*;
-use super::rules::{CollisionGroup, CollisionRule, FullPass, RuleHooks};
+use super::rules::{CollisionGroup, CollisionRule, FullPass, Node, PlanCause, RuleHooks};
 
 use super::scenes::Scene;
 use super::{at, cuboid};
@@ -635,5 +635,119 @@ fn a_collider_whose_last_rule_goes_in_a_whole_plans_step_gets_rapiers_defaults_b
             "whole plan {whole}: no rule is left, nor the flag: {:?}",
             scene.world.colliders[surface].active_hooks()
         );
+    }
+}
+
+#[test]
+fn ghosts_that_come_and_go_with_a_personal_rule_are_planned_alone() {
+    // A spawner: every step a ghost (a body whose personal rule is
+    // `NoResponse`, which Rapier's solver groups say) comes and the oldest
+    // goes, among boxes with a personal `Normal` on their bodies. Whether
+    // the groups can say a ghost's rule depends on every chain's first
+    // personal rule (a shallower `Normal` would override it): more ghosts
+    // and boxes at the same depths change nothing of that, so each step
+    // plans the new ghost alone, with the settings a whole plan writes
+    // (the oracle's, which plans everything every step). The last row
+    // gives a box's collider a `Normal` of its own, shallower than the
+    // ghosts' rule: that plans everything, as documented.
+    let settings = |scene: &Scene| -> Vec<_> {
+        let mut all: Vec<_> = scene
+            .world
+            .colliders
+            .iter()
+            .map(|(h, c)| (h, c.collision_groups(), c.solver_groups(), c.active_hooks()))
+            .collect();
+        all.sort_by_key(|s| s.0.into_raw_parts());
+        all
+    };
+    let build = |oracle: bool| {
+        let mut scene = Scene::new();
+        let mut hooks = RuleHooks::default();
+        hooks.set_exhaustive(oracle);
+        for i in 0..6 {
+            let (crate_body, _) = scene.cube(-6.0 + 2.0 * i as f32, 0.5);
+            hooks.rules_mut().set_personal(crate_body, Normal);
+        }
+        (scene, hooks)
+    };
+    let (mut scene, mut hooks) = build(false);
+    let (mut whole, mut oracle) = build(true);
+    let mut ghosts = std::collections::VecDeque::new();
+    for step in 0..40 {
+        let x = -4.0 + 0.2 * step as f32;
+        let (ghost, _) = scene.cube(x, 3.0);
+        let (twin, _) = whole.cube(x, 3.0);
+        assert_eq!(ghost, twin, "the two worlds name the same bodies");
+        hooks.rules_mut().set_personal(ghost, NoResponse);
+        oracle.rules_mut().set_personal(twin, NoResponse);
+        ghosts.push_back(ghost);
+        if ghosts.len() > 10 {
+            let oldest = ghosts.pop_front().expect("a ghost");
+            scene.world.remove_body(oldest);
+            whole.world.remove_body(oldest);
+        }
+        hooks.step(&mut scene.world);
+        oracle.step(&mut whole.world);
+        let stats = hooks.stats();
+        if step > 0 {
+            assert_eq!(stats.full_plan, None, "step {step}: the ghost is planned alone: {stats:?}");
+            assert!(stats.planned_colliders <= 1, "step {step}: the new ghost only: {stats:?}");
+        }
+        assert_eq!(settings(&scene), settings(&whole), "step {step}: a whole plan's settings");
+    }
+    for _ in 0..60 {
+        hooks.step(&mut scene.world);
+    }
+    let heights: Vec<f32> = ghosts.iter().map(|&g| scene.y(g)).collect();
+    assert!(
+        heights.iter().all(|&y| y < -1.0),
+        "the ghosts fell through the floor: heights {heights:?}"
+    );
+    // A box's collider says `Normal` itself: shallower than every ghost's
+    // rule, it overrides them, and only a whole plan follows that.
+    let (_, collider) = scene.cube(8.0, 0.5);
+    hooks.rules_mut().set_personal(collider, Normal);
+    hooks.step(&mut scene.world);
+    let stats = hooks.stats();
+    assert_eq!(stats.full_plan, Some(PlanCause::NewClass), "{stats:?}");
+}
+
+#[test]
+fn an_entry_about_a_ghost_reaches_through_its_personal_rule() {
+    // A ghost's personal `NoPair` is said by Rapier's groups while no entry
+    // reaches it. An entry (`Normal` with the floor), on the ghost's record
+    // or on the floor's, must then hook it: the ghost lands, as with a
+    // whole plan every step, and the other ghosts fall through the floor.
+    for ghost_owns in [true, false] {
+        let build = |oracle: bool| {
+            let mut scene = Scene::new();
+            let mut hooks = RuleHooks::default();
+            hooks.set_exhaustive(oracle);
+            let mut ghosts = Vec::new();
+            for i in 0..4 {
+                let (ghost, _) = scene.cube(-3.0 + 2.0 * i as f32, 2.0);
+                hooks.rules_mut().set_personal(ghost, NoPair);
+                ghosts.push(ghost);
+            }
+            (scene, hooks, ghosts)
+        };
+        let (mut scene, mut hooks, ghosts) = build(false);
+        let (mut whole, mut oracle, _) = build(true);
+        hooks.step(&mut scene.world);
+        oracle.step(&mut whole.world);
+        let (ghost, floor) = (Node::from(ghosts[0]), Node::from(scene.ground));
+        let (owner, subject) = if ghost_owns { (ghost, floor) } else { (floor, ghost) };
+        for rules in [hooks.rules_mut(), oracle.rules_mut()] {
+            rules.set_specific(owner, subject, Normal);
+        }
+        for _ in 0..90 {
+            hooks.step(&mut scene.world);
+            oracle.step(&mut whole.world);
+        }
+        let (landed, fell) = (scene.y(ghosts[0]), scene.y(ghosts[1]));
+        let side = if ghost_owns { "the ghost's record" } else { "the floor's record" };
+        assert!((landed - 0.5).abs() < 0.05, "{side}: the ghost lands: y = {landed}");
+        assert!(fell < -1.0, "{side}: the others fall through the floor: y = {fell}");
+        assert_eq!(landed, whole.y(ghosts[0]), "{side}: as with a whole plan every step");
     }
 }

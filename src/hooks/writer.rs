@@ -191,7 +191,6 @@ impl RuleHooks {
             return;
         };
         let dynamic = dynamic_body(bodies, current.parent());
-        let planned_before = self.planned.plan.colliders.get(handle).is_some();
         let before = self.planned.plan.entry(handle, dynamic);
         let now = Settings::of(current);
         let own = self.own_settings(handle, current);
@@ -234,8 +233,12 @@ impl RuleHooks {
             self.queued.regrouped.insert(handle);
         }
         // A collider of a non-dynamic body may never wake: when the hook
-        // takes over (or lets go of) its pairs, Rapier must look at them.
-        let rehook = planned_before && now.hooks != target.hooks && !dynamic;
+        // takes over (or lets go of) its pairs, Rapier must look at them,
+        // and a change of hook flags alone sets no change flag Rapier's
+        // narrow phase reads. That holds the first time a rule reaches the
+        // collider too: a one-way surface given to a fixed cube reaches its
+        // pair with another fixed cube at once.
+        let rehook = now.hooks != target.hooks && !dynamic;
         if rehook {
             self.queued.regrouped.insert(handle);
         }

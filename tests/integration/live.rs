@@ -724,3 +724,42 @@ fn a_soft_body_cut_before_the_hooks_saw_it_keeps_the_rules_given_to_its_root() {
     }
     run.apply(&Step(2));
 }
+
+/// Found by `the_planner_changes_nothing_a_user_sees` at 2,048 cases: a
+/// one-way surface given to a fixed cube that touches another fixed cube
+/// (a pair Rapier computes because the other is hooked, which gives it
+/// every collision type). The crate wrote the contact-modification flag,
+/// but a change of hook flags alone sets no change flag that Rapier's
+/// narrow phase reads, and neither body moves, so the pair kept its
+/// contacts, and its contact events. With the planner off the contacts
+/// went. The first write of hook flags on a non-dynamic collider now nudges
+/// its groups, as later writes did.
+#[test]
+fn a_one_way_given_to_a_fixed_cube_reaches_its_pair_at_once() {
+    use super::world::Edit::*;
+    let cubes = [
+        (0.0, 0.4, 0),
+        (-0.935_754_8, 0.4, 0),
+        (-0.956_819, 0.4, 1),
+        (0.0, 2.361_630_7, 2),
+        (0.0, 0.4, 0),
+        (0.0, 0.4, 0),
+        (0.0, 0.4, 0),
+    ];
+    let edits = [
+        AddTearable(0.0, 0.5),
+        AddCube(0.0, 2.765_876_3, 2),
+        Personal(34, CollisionRule::Normal),
+        Step(1),
+        ProjectTypes(0, 0),
+        OneWay(9, 0),
+    ];
+    let mut on = Run::new(&cubes, true, true);
+    let mut off = Run::new(&cubes, false, true);
+    in_lockstep(&mut on, &mut off, &edits, |on, off| {
+        prop_assert_eq!(on.poses(), off.poses(), "the locked worlds move alike");
+        prop_assert_eq!(on.touching(), off.touching(), "touching pairs differ");
+        Ok(())
+    })
+    .unwrap();
+}

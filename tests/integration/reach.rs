@@ -567,16 +567,6 @@ fn a_rider_parented_under_an_entry_is_planned_alone_as_a_whole_plan_plans_it() {
         hooks.rules_mut().set_specific(rider, block, NoPair);
         (scene, hooks, platform, rider)
     };
-    let settings = |scene: &Scene| -> Vec<_> {
-        let mut all: Vec<_> = scene
-            .world
-            .colliders
-            .iter()
-            .map(|(h, c)| (h, c.collision_groups(), c.solver_groups(), c.active_hooks()))
-            .collect();
-        all.sort_by_key(|s| s.0.into_raw_parts());
-        all
-    };
     let (mut scene, mut hooks, platform, rider) = build(false);
     let (mut whole, mut oracle, _, _) = build(true);
     for _ in 0..60 {
@@ -650,16 +640,6 @@ fn ghosts_that_come_and_go_with_a_personal_rule_are_planned_alone() {
     // (the oracle's, which plans everything every step). The last row
     // gives a box's collider a `Normal` of its own, shallower than the
     // ghosts' rule: that plans everything, as documented.
-    let settings = |scene: &Scene| -> Vec<_> {
-        let mut all: Vec<_> = scene
-            .world
-            .colliders
-            .iter()
-            .map(|(h, c)| (h, c.collision_groups(), c.solver_groups(), c.active_hooks()))
-            .collect();
-        all.sort_by_key(|s| s.0.into_raw_parts());
-        all
-    };
     let build = |oracle: bool| {
         let mut scene = Scene::new();
         let mut hooks = RuleHooks::default();
@@ -750,4 +730,17 @@ fn an_entry_about_a_ghost_reaches_through_its_personal_rule() {
         assert!(fell < -1.0, "{side}: the others fall through the floor: y = {fell}");
         assert_eq!(landed, whole.y(ghosts[0]), "{side}: as with a whole plan every step");
     }
+}
+
+/// Every collider's groups and hook flags, in handle order: what two plans
+/// wrote, to compare them.
+fn settings(scene: &Scene) -> Vec<(ColliderHandle, InteractionGroups, InteractionGroups, ActiveHooks)> {
+    let mut all: Vec<_> = scene
+        .world
+        .colliders
+        .iter()
+        .map(|(h, c)| (h, c.collision_groups(), c.solver_groups(), c.active_hooks()))
+        .collect();
+    all.sort_by_key(|s| s.0.into_raw_parts());
+    all
 }

@@ -202,25 +202,8 @@ impl RuleHooks {
         for &node in nodes.iter().chain(changes.subjects()) {
             self.watch(bodies, colliders, node);
         }
-        // A subject's colliders keep their plans, but where a personal rule
-        // decides them: Rapier's groups say a personal rule only for
-        // colliders no entry reaches (see `planner::personal`).
         let mut nodes = nodes;
-        for &subject in changes.subjects() {
-            let rules = &self.decide.rules;
-            let personal = self
-                .colliders_under(subject, bodies, colliders)
-                .into_iter()
-                .any(|c| {
-                    rules
-                        .hierarchy
-                        .chain(bodies, colliders, Node::Collider(c))
-                        .any(|n| rules.record(n).is_some_and(|r| r.personal.is_decided()))
-                });
-            if personal {
-                nodes.push(subject);
-            }
-        }
+        nodes.extend(self.personal_subjects(changes.subjects(), bodies, colliders));
         // The decisions of entries the edits removed end, and what they said
         // of the colliders under their nodes with them (see
         // `Decisions::forget_ended`).
@@ -295,6 +278,9 @@ impl RuleHooks {
             }
         }
         changed.entries.extend_from_slice(removal_changes.entries());
+        // An entry gone with its owner no longer reaches its subject.
+        let subjects = self.personal_subjects(removal_changes.subjects(), bodies, colliders);
+        changed.nodes.extend(subjects);
         if !look.project_changed.is_empty() {
             self.queued.replan.get_or_insert(PlanCause::ProjectSettings);
         }
@@ -309,6 +295,34 @@ impl RuleHooks {
             .extend(look.project_changed.iter().map(|&c| Node::Collider(c)));
         changed.added = look.added;
         self.check_room(colliders);
+    }
+
+    /// The subjects of edited or removed entries whose colliders a personal
+    /// rule decides: their plans change with the entries that reach them,
+    /// since Rapier's groups say a personal rule only for colliders no entry
+    /// reaches (see `planner::personal`). Other subjects' colliders keep
+    /// their plans.
+    fn personal_subjects(
+        &self,
+        subjects: &[Node],
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) -> Vec<Node> {
+        let rules = &self.decide.rules;
+        subjects
+            .iter()
+            .copied()
+            .filter(|&subject| {
+                self.colliders_under(subject, bodies, colliders)
+                    .into_iter()
+                    .any(|c| {
+                        rules
+                            .hierarchy
+                            .chain(bodies, colliders, Node::Collider(c))
+                            .any(|n| rules.record(n).is_some_and(|r| r.personal.is_decided()))
+                    })
+            })
+            .collect()
     }
 
     /// Colliders came or went in a world whose plan shares group bits or

@@ -744,3 +744,48 @@ fn settings(scene: &Scene) -> Vec<(ColliderHandle, InteractionGroups, Interactio
     all.sort_by_key(|s| s.0.into_raw_parts());
     all
 }
+
+#[test]
+fn a_ghost_is_native_again_once_the_owner_of_the_entry_about_it_is_removed() {
+    // Found by a review of the planner: an entry owned by a body without
+    // colliders (a spawner's frame) about a ghost, or about the platform a
+    // ghost rides, hooks the ghost (its personal `NoResponse` is native
+    // only while no entry reaches it). Removing the owner removes the
+    // entry, and the ghost's colliders are planned again: the settings are
+    // a whole plan's after each step, in both rows.
+    for riding in [false, true] {
+        let build = |oracle: bool| {
+            let mut scene = Scene::new();
+            let mut hooks = RuleHooks::default();
+            hooks.set_exhaustive(oracle);
+            let (ghost, _) = scene.cube(0.0, 2.0);
+            let (other, _) = scene.cube(3.0, 2.0);
+            let platform = scene.world.insert_body(RigidBodyBuilder::kinematic_position_based());
+            let owner = scene.world.insert_body(RigidBodyBuilder::fixed());
+            let rules = hooks.rules_mut();
+            for g in [ghost, other] {
+                rules.set_personal(g, NoResponse);
+            }
+            if riding {
+                rules.set_parent(ghost, platform).expect("no cycle");
+            }
+            (scene, hooks, ghost, platform, owner)
+        };
+        let (mut scene, mut hooks, ghost, platform, owner) = build(false);
+        let (mut whole, mut oracle, ..) = build(true);
+        let subject = if riding { platform } else { ghost };
+        let row = if riding { "about the platform" } else { "about the ghost" };
+        hooks.step(&mut scene.world);
+        oracle.step(&mut whole.world);
+        hooks.rules_mut().set_specific(owner, subject, Normal);
+        oracle.rules_mut().set_specific(owner, subject, Normal);
+        hooks.step(&mut scene.world);
+        oracle.step(&mut whole.world);
+        assert_eq!(settings(&scene), settings(&whole), "{row}: with the entry");
+        scene.world.remove_body(owner);
+        whole.world.remove_body(owner);
+        hooks.step(&mut scene.world);
+        oracle.step(&mut whole.world);
+        assert_eq!(settings(&scene), settings(&whole), "{row}: once its owner is gone");
+    }
+}

@@ -9,7 +9,7 @@ use super::super::rapier::prelude::*;
 
 use super::step::missing;
 use super::{ManifoldUpdate, PairKey, PlanCause, RecalculationPolicy, RuleHooks};
-use super::super::planner::{self, room::Room};
+use super::super::planner::{self, personal::first_personal, room::Room};
 use super::super::{CollisionRule, FullPass, Node, StepStats};
 
 /// What the edits and the look found changed before a step.
@@ -315,12 +315,7 @@ impl RuleHooks {
             .filter(|&subject| {
                 self.colliders_under(subject, bodies, colliders)
                     .into_iter()
-                    .any(|c| {
-                        rules
-                            .hierarchy
-                            .chain(bodies, colliders, Node::Collider(c))
-                            .any(|n| rules.record(n).is_some_and(|r| r.personal.is_decided()))
-                    })
+                    .any(|c| first_personal(rules, bodies, colliders, c).is_some())
             })
             .collect()
     }

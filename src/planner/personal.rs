@@ -10,7 +10,7 @@ use super::super::{CollisionRule, CollisionRuleSet, Node};
 
 /// The first decided personal rule up the chain of `leaf`, and its depth
 /// (0 for the collider itself).
-pub(super) fn first_personal(
+pub(crate) fn first_personal(
     rules: &CollisionRuleSet,
     bodies: &RigidBodySet,
     colliders: &ColliderSet,

@@ -551,9 +551,7 @@ fn a_rider_parented_under_an_entry_is_planned_alone_as_a_whole_plan_plans_it() {
     // plan's (the oracle's, which plans everything every step), and the
     // rider passes through the floor.
     let build = |oracle: bool| {
-        let mut scene = Scene::new();
-        let mut hooks = RuleHooks::default();
-        hooks.set_exhaustive(oracle);
+        let (mut scene, mut hooks) = scene_and_hooks(oracle);
         let (platform, _) = scene.cube(6.0, 3.0);
         let (rider, _) = scene.cube(0.0, 1.5);
         let block = scene.world.insert_body(RigidBodyBuilder::fixed().translation(at(-20.0, 0.5)));
@@ -641,9 +639,7 @@ fn ghosts_that_come_and_go_with_a_personal_rule_are_planned_alone() {
     // gives a box's collider a `Normal` of its own, shallower than the
     // ghosts' rule: that plans everything, as documented.
     let build = |oracle: bool| {
-        let mut scene = Scene::new();
-        let mut hooks = RuleHooks::default();
-        hooks.set_exhaustive(oracle);
+        let (mut scene, mut hooks) = scene_and_hooks(oracle);
         for i in 0..6 {
             let (crate_body, _) = scene.cube(-6.0 + 2.0 * i as f32, 0.5);
             hooks.rules_mut().set_personal(crate_body, Normal);
@@ -700,9 +696,7 @@ fn an_entry_about_a_ghost_reaches_through_its_personal_rule() {
     // whole plan every step, and the other ghosts fall through the floor.
     for ghost_owns in [true, false] {
         let build = |oracle: bool| {
-            let mut scene = Scene::new();
-            let mut hooks = RuleHooks::default();
-            hooks.set_exhaustive(oracle);
+            let (mut scene, mut hooks) = scene_and_hooks(oracle);
             let mut ghosts = Vec::new();
             for i in 0..4 {
                 let (ghost, _) = scene.cube(-3.0 + 2.0 * i as f32, 2.0);
@@ -755,9 +749,7 @@ fn a_ghost_is_native_again_once_the_owner_of_the_entry_about_it_is_removed() {
     // a whole plan's after each step, in both rows.
     for riding in [false, true] {
         let build = |oracle: bool| {
-            let mut scene = Scene::new();
-            let mut hooks = RuleHooks::default();
-            hooks.set_exhaustive(oracle);
+            let (mut scene, mut hooks) = scene_and_hooks(oracle);
             let (ghost, _) = scene.cube(0.0, 2.0);
             let (other, _) = scene.cube(3.0, 2.0);
             let platform = scene.world.insert_body(RigidBodyBuilder::kinematic_position_based());
@@ -788,4 +780,12 @@ fn a_ghost_is_native_again_once_the_owner_of_the_entry_about_it_is_removed() {
         oracle.step(&mut whole.world);
         assert_eq!(settings(&scene), settings(&whole), "{row}: once its owner is gone");
     }
+}
+
+/// A scene and its hooks; with `oracle`, the test oracle's hooks, which
+/// plan everything every step: a whole plan's settings to compare with.
+fn scene_and_hooks(oracle: bool) -> (Scene, RuleHooks) {
+    let mut hooks = RuleHooks::default();
+    hooks.set_exhaustive(oracle);
+    (Scene::new(), hooks)
 }

@@ -99,6 +99,13 @@ impl PairState {
         }
     }
 
+    /// Whether an override or a manifold setting keeps the pair hooked (a
+    /// pinned pair): the plan hooks a side of it while it lives.
+    #[inline]
+    pub(crate) fn is_pinned(&self) -> bool {
+        self.overridden.is_some() || self.manifold != ManifoldUpdate::ByRule
+    }
+
     /// The pair's rule: its override if it has one, else the computed rule.
     #[inline]
     pub(crate) fn rule(&self) -> CollisionRule {

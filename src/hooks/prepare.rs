@@ -8,7 +8,7 @@ use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
 use super::step::missing;
-use super::{ManifoldUpdate, PairKey, PlanCause, RecalculationPolicy, RuleHooks};
+use super::{PairKey, PlanCause, RecalculationPolicy, RuleHooks};
 use super::super::planner::{self, personal::first_personal, room::Room};
 use super::super::{CollisionRule, FullPass, Node, StepStats};
 
@@ -553,7 +553,7 @@ impl RuleHooks {
         let mut pinned: Vec<PairKey> = self
             .pairs
             .iter()
-            .filter(|(_, s)| s.overridden.is_some() || s.manifold != ManifoldUpdate::ByRule)
+            .filter(|(_, s)| s.is_pinned())
             .map(|(k, _)| k)
             .collect();
         pinned.sort_unstable();

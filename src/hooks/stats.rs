@@ -47,8 +47,8 @@ pub enum PlanCause {
     /// through Rapier, or colliders came with settings that take group bits
     /// or collision types the plan gave away.
     ProjectSettings,
-    /// A live pair's override or manifold setting changed: one of its
-    /// colliders is hooked.
+    /// A live pair's override or manifold setting changed, or a pair that
+    /// had one ended: one of its colliders is hooked while it lives.
     PinnedPair,
     /// A changed, added or removed collider needs what only a whole plan
     /// gives: a class (a group, with dynamic or other members) no planned

@@ -115,7 +115,7 @@ impl RuleHooks {
         let step = self.boundary.step;
         let touched: HashSet<ColliderHandle> = touched.into_iter().collect();
         let regrouped = std::mem::take(&mut self.queued.regrouped);
-        let (mut answered, mut never_ended, mut without_contacts) = (0, false, 0);
+        let (mut answered, mut pinned_ended, mut without_contacts) = (0, false, 0);
         let mut retyped = Vec::new();
         let recomputes = self.decide.policy != RecalculationPolicy::Manual;
         let plan = &self.planned.plan;
@@ -154,7 +154,9 @@ impl RuleHooks {
             } else {
                 exists_from_hooked_side() && filters_pass(bodies, colliders, joints, a, b)
             };
-            never_ended |= !keep && state.manifold == ManifoldUpdate::Never;
+            // A pinned pair that ends leaves the side hooked for it: the
+            // plan takes it back.
+            pinned_ended |= !keep && state.is_pinned();
             // Rapier answers a soft-rigid pair with its own solver: it
             // cannot witness a step without the hooks.
             let soft = keep && state.rule() == CollisionRule::NoResponse && soft_rigid(colliders, a, b);
@@ -184,7 +186,7 @@ impl RuleHooks {
             }
             keep
         });
-        if never_ended {
+        if pinned_ended {
             self.queued.replan.get_or_insert(PlanCause::PinnedPair);
         }
         self.boundary.witness = witness;

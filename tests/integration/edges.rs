@@ -588,3 +588,51 @@ fn never_holds_on_boxes_and_is_refused_for_meshes_and_compounds() {
         }
     }
 }
+
+/// A pinned pair (an override or a manifold setting) hooks one of its
+/// colliders while it lives. Once the bodies part, Rapier drops the pair
+/// and its pin with it: the plan gives the collider its unhooked settings
+/// back, as if the pair had never been pinned.
+#[test]
+fn a_pinned_pair_that_ends_gives_its_hooked_side_back() {
+    type Pin = fn(&mut RuleHooks, &PhysicsWorld, ColliderHandle, ColliderHandle) -> bool;
+    let table: [(&str, Pin); 3] = [
+        ("override", |h, w, a, b| {
+            h.set_pair_rule(w, a, b, NoResponse)
+        }),
+        ("always", |h, w, a, b| {
+            h.set_manifold_update(w, a, b, ManifoldUpdate::Always)
+        }),
+        ("never", |h, w, a, b| {
+            h.set_manifold_update(w, a, b, ManifoldUpdate::Never)
+        }),
+    ];
+    for (what, pin) in table {
+        let mut scene = Scene::new();
+        let (body, cube) = scene.cube(0.0, 0.49);
+        let mut hooks = RuleHooks::default();
+        hooks.step(&mut scene.world);
+        assert!(
+            pin(&mut hooks, &scene.world, cube, scene.floor),
+            "{what}: the pair is live"
+        );
+        hooks.step(&mut scene.world);
+        let hooked = hooks.stats().hooked_colliders;
+        assert_eq!(
+            hooked, 1,
+            "{what}: one side hooked while pinned, {hooked} are"
+        );
+
+        scene.world.bodies[body].set_translation(Vector::new(0.0, 20.0, 0.0), true);
+        for _ in 0..2 {
+            hooks.step(&mut scene.world);
+        }
+        let live = hooks.pair_rule(&scene.world, cube, scene.floor);
+        assert_eq!(live, None, "{what}: Rapier dropped the pair");
+        let hooked = hooks.stats().hooked_colliders;
+        assert_eq!(
+            hooked, 0,
+            "{what}: nothing hooked once the pin ended, {hooked} are"
+        );
+    }
+}

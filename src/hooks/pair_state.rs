@@ -48,6 +48,12 @@ pub(crate) struct FrozenManifold {
     contacts: Vec<FrozenContact>,
 }
 
+/// Whether a pinned pair left the table with a removed collider: its
+/// other side may still be hooked for it, and only a plan gives it back.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[must_use]
+pub(crate) struct PinnedGone(pub(crate) bool);
+
 /// What the crate keeps about one live pair.
 #[derive(Debug)]
 pub(crate) struct PairState {
@@ -197,13 +203,15 @@ impl PairTable {
     }
 
     /// Forgets every pair of `collider`.
-    pub(crate) fn remove_collider(&mut self, collider: ColliderHandle) {
+    pub(crate) fn remove_collider(&mut self, collider: ColliderHandle) -> PinnedGone {
+        let mut pinned = PinnedGone(false);
         for key in self.by_collider.remove(&collider).unwrap_or_default() {
-            self.pairs.remove(&key);
+            pinned.0 |= self.pairs.remove(&key).is_some_and(|state| state.is_pinned());
             let (a, b) = key.colliders();
             let other = if a == collider { b } else { a };
             self.unlink(other, key);
         }
+        pinned
     }
 
     /// The pairs of `collider` in the table.

@@ -515,7 +515,10 @@ impl RuleHooks {
     ) -> Vec<Node> {
         let mut gone: Vec<Node> = Vec::new();
         for &(handle, body) in removed {
-            self.pairs.remove_collider(handle);
+            if self.pairs.remove_collider(handle).0 {
+                // The pinned pair's other side was hooked for it.
+                self.queued.replan.get_or_insert(PlanCause::PinnedPair);
+            }
             self.decide.rules.remove_node(handle);
             if self.planned.plan.forget(handle) {
                 self.queued.replan.get_or_insert(PlanCause::NewClass);

@@ -4,7 +4,7 @@
 use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
-use super::{PairKey, RuleHooks};
+use super::{PairKey, PlanCause, RuleHooks};
 use super::super::Node;
 use super::super::model::CollidersUnder;
 
@@ -48,6 +48,7 @@ impl RuleHooks {
             keys
         };
         let mut updates = Vec::new();
+        let mut unpinned = false;
         for key in keys {
             let (a, b) = key.colliders();
             // Rapier removed one of them (unwatched): the pair is forgotten
@@ -76,8 +77,9 @@ impl RuleHooks {
             let retyped = kinds != state.kinds;
             state.computed = computed;
             state.kinds = kinds;
-            if force {
-                state.overridden = None;
+            if force && state.overridden.take().is_some() && !state.is_pinned() {
+                // The override kept a side hooked for the pair.
+                unpinned = true;
             }
             if state.rule() != before && !retyped {
                 let (a, b) = key.colliders();
@@ -95,6 +97,11 @@ impl RuleHooks {
                     refresh.push(a);
                 }
             }
+        }
+        if unpinned {
+            // Planned at the next step's prepare: the side stays hooked one
+            // step more, answering by the rules.
+            self.queued.replan.get_or_insert(PlanCause::PinnedPair);
         }
         refresh
     }

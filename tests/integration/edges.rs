@@ -1,7 +1,7 @@
 //! The edges of the contract: answers the user gives (the pair-created
 //! callback, `set_pair_rule`) between two non-dynamic bodies.
 
-use rapier_collision_rules::{CollisionRule, ManifoldUpdate, RuleHooks};
+use rapier_collision_rules::{CollisionRule, ManifoldUpdate, PlanCause, RuleHooks};
 use rapier3d::prelude::*;
 
 use crate::dim3::scenes::Scene;
@@ -590,13 +590,15 @@ fn never_holds_on_boxes_and_is_refused_for_meshes_and_compounds() {
 }
 
 /// A pinned pair (an override or a manifold setting) hooks one of its
-/// colliders while it lives. Once the bodies part, Rapier drops the pair
-/// and its pin with it: the plan gives the collider its unhooked settings
-/// back, as if the pair had never been pinned.
+/// colliders while it lives. However the pin goes (the bodies part and
+/// Rapier drops the pair, `force_recalculation` drops the override, or the
+/// side that does not carry it is removed), a whole plan follows and the collider gets its
+/// unhooked settings back, as if the pair had never been pinned; the step
+/// after plans nothing more.
 #[test]
 fn a_pinned_pair_that_ends_gives_its_hooked_side_back() {
     type Pin = fn(&mut RuleHooks, &PhysicsWorld, ColliderHandle, ColliderHandle) -> bool;
-    let table: [(&str, Pin); 3] = [
+    let pins: [(&str, Pin); 3] = [
         ("override", |h, w, a, b| {
             h.set_pair_rule(w, a, b, NoResponse)
         }),
@@ -607,32 +609,101 @@ fn a_pinned_pair_that_ends_gives_its_hooked_side_back() {
             h.set_manifold_update(w, a, b, ManifoldUpdate::Never)
         }),
     ];
-    for (what, pin) in table {
-        let mut scene = Scene::new();
-        let (body, cube) = scene.cube(0.0, 0.49);
-        let mut hooks = RuleHooks::default();
-        hooks.step(&mut scene.world);
-        assert!(
-            pin(&mut hooks, &scene.world, cube, scene.floor),
-            "{what}: the pair is live"
-        );
-        hooks.step(&mut scene.world);
-        let hooked = hooks.stats().hooked_colliders;
-        assert_eq!(
-            hooked, 1,
-            "{what}: one side hooked while pinned, {hooked} are"
-        );
-
-        scene.world.bodies[body].set_translation(Vector::new(0.0, 20.0, 0.0), true);
-        for _ in 0..2 {
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    enum End {
+        Part,
+        Force,
+        RemoveOther,
+    }
+    for (what, pin) in pins {
+        for end in [End::Part, End::Force, End::RemoveOther] {
+            if end == End::Force && what != "override" {
+                // `force_recalculation` drops overrides only.
+                continue;
+            }
+            let what = format!("{what}, {end:?}");
+            let mut scene = Scene::new();
+            let (body, cube) = scene.cube(0.0, 0.49);
+            let floor = scene.floor;
+            // A group with no rule has the hooks watch both sides.
+            let mut hooks = RuleHooks::default();
+            let group = hooks.rules_mut().create_group();
+            hooks.rules_mut().set_group(scene.ground, Some(group));
+            hooks.rules_mut().set_group(body, Some(group));
+            // Members of both kinds far away keep the group's classes when
+            // a side is removed (a class's last member leaving plans
+            // everything for that reason alone).
+            let (spare, _) = scene.cube(50.0, 50.0);
+            let fixed = scene
+                .world
+                .insert_body(RigidBodyBuilder::fixed().translation(Vector::new(-50.0, 50.0, 0.0)));
+            scene
+                .world
+                .insert_collider(ColliderBuilder::cuboid(0.5, 0.5, 0.5), Some(fixed));
+            for member in [spare, fixed] {
+                hooks.rules_mut().set_group(member, Some(group));
+            }
             hooks.step(&mut scene.world);
+            assert!(
+                pin(&mut hooks, &scene.world, cube, floor),
+                "{what}: the pair is live"
+            );
+            hooks.step(&mut scene.world);
+            let hooked = hooks.stats().hooked_colliders;
+            assert_eq!(
+                hooked, 1,
+                "{what}: one side hooked while pinned, {hooked} are"
+            );
+            let carries = |world: &PhysicsWorld, c: ColliderHandle| {
+                world
+                    .colliders
+                    .get(c)
+                    .is_some_and(|c| !c.active_hooks().is_empty())
+            };
+            let (carrier, other) = if carries(&scene.world, cube) {
+                (cube, floor)
+            } else {
+                (floor, cube)
+            };
+
+            match end {
+                End::Part => {
+                    scene.world.bodies[body].set_translation(Vector::new(0.0, 20.0, 0.0), true);
+                }
+                End::Force => hooks.force_recalculation(body),
+                End::RemoveOther => {
+                    let owner = scene.world.colliders[other].parent().expect("a body");
+                    scene.world.remove_body(owner);
+                }
+            }
+            let mut causes = Vec::new();
+            for _ in 0..2 {
+                hooks.step(&mut scene.world);
+                causes.push(hooks.stats().full_plan);
+            }
+            assert!(
+                causes.contains(&Some(PlanCause::PinnedPair)),
+                "{what}: the pin's end plans again: {causes:?}"
+            );
+            if end != End::Force {
+                let live = hooks.pair_rule(&scene.world, cube, floor);
+                assert_eq!(live, None, "{what}: Rapier dropped the pair");
+            }
+            let hooked = hooks.stats().hooked_colliders;
+            assert_eq!(
+                hooked, 0,
+                "{what}: nothing hooked once the pin ended, {hooked} are"
+            );
+            assert!(
+                !carries(&scene.world, carrier),
+                "{what}: the carrier's own hook flags back"
+            );
+            hooks.step(&mut scene.world);
+            let cause = hooks.stats().full_plan;
+            assert_eq!(
+                cause, None,
+                "{what}: the step after plans nothing: {cause:?}"
+            );
         }
-        let live = hooks.pair_rule(&scene.world, cube, scene.floor);
-        assert_eq!(live, None, "{what}: Rapier dropped the pair");
-        let hooked = hooks.stats().hooked_colliders;
-        assert_eq!(
-            hooked, 0,
-            "{what}: nothing hooked once the pin ended, {hooked} are"
-        );
     }
 }

@@ -77,9 +77,10 @@ impl RuleHooks {
             let retyped = kinds != state.kinds;
             state.computed = computed;
             state.kinds = kinds;
-            if force && state.overridden.take().is_some() && !state.is_pinned() {
-                // The override kept a side hooked for the pair.
-                unpinned = true;
+            if force && state.overridden.take().is_some() {
+                // Unless a manifold setting still pins the pair, the side
+                // hooked for the override goes back to its plan.
+                unpinned |= !state.is_pinned();
             }
             if state.rule() != before && !retyped {
                 let (a, b) = key.colliders();

@@ -592,9 +592,9 @@ fn never_holds_on_boxes_and_is_refused_for_meshes_and_compounds() {
 /// A pinned pair (an override or a manifold setting) hooks one of its
 /// colliders while it lives. However the pin goes (the bodies part and
 /// Rapier drops the pair, `force_recalculation` drops the override, or the
-/// side that does not carry it is removed), a whole plan follows and the collider gets its
-/// unhooked settings back, as if the pair had never been pinned; the step
-/// after plans nothing more.
+/// side that does not carry it is removed), a whole plan follows and the
+/// collider gets its unhooked settings back, as if the pair had never been
+/// pinned; the step after plans nothing more.
 #[test]
 fn a_pinned_pair_that_ends_gives_its_hooked_side_back() {
     type Pin = fn(&mut RuleHooks, &PhysicsWorld, ColliderHandle, ColliderHandle) -> bool;

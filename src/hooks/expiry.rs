@@ -1,9 +1,10 @@
 //! Rules with an end (`docs/semantics.md`, "Rules with an end"): before
 //! each step the ends of specific entries and of pair overrides are
 //! counted, and a rule whose end came is removed, so that its pairs fall
-//! back to the other stages in the step about to be taken. The count costs
-//! one look per rule with an end, and the test for apart the colliders of
-//! its two sides: nothing else in the world.
+//! back to the other stages in the step about to be taken. The count of
+//! the entries' ends costs the ends that come (`model/endings.rs`), that of
+//! the overrides' ends a look at each, and the test for apart the colliders
+//! of its two sides: nothing else in the world.
 
 use super::super::rapier::prelude::*;
 

@@ -1,10 +1,9 @@
 //! Rules with an end (`docs/semantics.md`, "Rules with an end"): a
 //! specific entry given [`Until`] the two sides are apart, for a number of
 //! steps, or for a simulated time. The rule set keeps each entry's end
-//! beside the entry; the hooks count it down and remove the entry when it
-//! comes (they can see the world, the rule set cannot).
-
-use std::collections::BTreeMap;
+//! beside the entry, against its clock ([`endings`](super::endings)); the
+//! hooks count the steps and remove the entry when its end comes (they can
+//! see the world, the rule set cannot).
 
 use super::super::rapier::prelude::Real;
 
@@ -37,16 +36,16 @@ use super::super::{CollisionRule, CollisionRuleSet, Node};
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Until {
-    count: Count,
-    margin: Real,
+    pub(super) count: Count,
+    pub(super) margin: Real,
     /// A due count waits for the sides to be apart.
-    wait_apart: bool,
+    pub(super) wait_apart: bool,
 }
 
 /// What an end counts, and what is left of it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-enum Count {
+pub(super) enum Count {
     Apart,
     Steps(u32),
     Seconds(Real),
@@ -224,12 +223,6 @@ pub(crate) struct DueEnd {
     pub(crate) margin: Real,
 }
 
-/// The ends of the specific entries that have one, keyed by the entry's
-/// two nodes as given: the sides tested for apart. In the node order, in
-/// which the hooks count them every step (a sort of every end each step
-/// cost more than the counts).
-pub(crate) type Endings = BTreeMap<(Node, Node), Until>;
-
 /// Rules with an end.
 impl CollisionRuleSet {
     /// What `node` says about `other` (as
@@ -288,7 +281,7 @@ impl CollisionRuleSet {
         if self.specific(node, other) == CollisionRule::Defer {
             return None;
         }
-        self.endings.get(&(node, other)).copied().or_else(|| {
+        self.endings.get(&(node, other)).or_else(|| {
             // The entry may have been given its end through a node that
             // shares `node`'s record. A record with one user keeps its
             // ends under it (see `endings_leave`): nothing to look for.
@@ -299,7 +292,7 @@ impl CollisionRuleSet {
             self.endings
                 .iter()
                 .find(|((n, o), _)| *o == other && self.record_id(*n) == Some(record))
-                .map(|(_, until)| *until)
+                .map(|(_, until)| until)
         })
     }
 
@@ -316,9 +309,9 @@ impl CollisionRuleSet {
             Some(record) if self.records.get(record).users > 1 => {
                 let ids: Vec<(Node, Node)> = self
                     .endings
-                    .keys()
+                    .iter()
+                    .map(|(key, _)| key)
                     .filter(|(n, o)| *o == other && (*n == node || self.record_id(*n) == Some(record)))
-                    .copied()
                     .collect();
                 for key in ids {
                     self.endings.remove(&key);
@@ -356,34 +349,23 @@ impl CollisionRuleSet {
             None
         };
         for key in keys {
-            let until = self.endings.remove(&key).expect("a listed end");
-            if let Some(heir) = heir {
-                self.endings.entry((heir, key.1)).or_insert(until);
+            match heir {
+                Some(heir) => self.endings.hand_over(key, (heir, key.1)),
+                None => {
+                    self.endings.remove(&key);
+                }
             }
         }
     }
 
-    /// Counts a step of `dt` on every end, in the node order, in one walk:
-    /// forgets the ends whose entry went another way (its object left,
-    /// say), and returns the entries whose end has come or comes once
-    /// their sides are apart, with the end's margin.
+    /// Counts a step of `dt`: returns the entries whose end has come or
+    /// comes once their sides are apart, with the end's margin, in the
+    /// node order, and forgets on the way the ends whose entry went another
+    /// way (its object left, say). Costs the ends that came, not every end
+    /// (`docs/architecture.md`, "Cost per step").
     pub(crate) fn count_ends(&mut self, dt: Real) -> Vec<DueEnd> {
         let mut endings = std::mem::take(&mut self.endings);
-        let mut due = Vec::new();
-        endings.retain(|&(node, other), until| {
-            if !self.specific(node, other).is_decided() {
-                return false;
-            }
-            if let Some(came) = until.count_step(dt) {
-                due.push(DueEnd {
-                    node,
-                    other,
-                    due: came,
-                    margin: until.margin(),
-                });
-            }
-            true
-        });
+        let due = endings.count(dt, |node, other| self.specific(node, other).is_decided());
         self.endings = endings;
         due
     }

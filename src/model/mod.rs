@@ -10,7 +10,8 @@
 //! Every verb validates on write and trusts on read: a parent cycle is
 //! refused with a [`RuleError`], a group of another rule set panics, a dead
 //! handle ([`tombstones`]) is ignored, and a removed object leaves no rule
-//! behind ([`removal`]). Each edit is logged ([`changes`]) so that the hooks
+//! behind ([`removal`]). Entries with an end keep it against a clock
+//! ([`endings`]), so that a step counts only the ends that come. Each edit is logged ([`changes`]) so that the hooks
 //! recalculate just what it can affect. [`integrity`] checks a rule set
 //! against its world, [`snapshot`] saves and loads one, and [`joints`] and
 //! [`layers`] build rules from what a Rapier project already has, and
@@ -24,6 +25,7 @@ pub(crate) mod body_kinds;
 pub(crate) mod changes;
 pub(crate) mod decision;
 pub(crate) mod ending;
+pub(crate) mod endings;
 pub(crate) mod error;
 pub(crate) mod group;
 pub(crate) mod group_table;

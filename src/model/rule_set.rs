@@ -6,7 +6,7 @@ use hashbrown::HashMap;
 use super::super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
 
 use super::changes::Changes;
-use super::ending::Endings;
+use super::endings::Endings;
 use super::group_table::GroupTable;
 use super::hierarchy::Hierarchy;
 use super::decision::Decision;

@@ -8,7 +8,7 @@
 
 use super::super::rapier::prelude::*;
 
-use super::super::model::{Due, DueEnd};
+use super::super::model::{Countdown, Due, DueEnd};
 use super::super::world::apart;
 use super::super::{CollisionRule, Until};
 use super::{PairKey, RuleHooks};
@@ -51,7 +51,7 @@ impl RuleHooks {
     ) -> bool {
         let set = self.set_pair_rule(world, a, b, rule);
         if set && rule.is_decided() {
-            self.pair_ends.insert(PairKey::new(a, b), until);
+            self.pair_ends.insert(PairKey::new(a, b), Countdown::new(until));
         }
         set
     }
@@ -62,7 +62,7 @@ impl RuleHooks {
     pub fn pair_rule_until(&self, a: ColliderHandle, b: ColliderHandle) -> Option<Until> {
         let key = PairKey::new(a, b);
         self.pairs.get(key).and_then(|state| state.overridden)?;
-        self.pair_ends.get(&key).copied()
+        self.pair_ends.get(&key).map(Countdown::until)
     }
 
     /// How much simulated time the steps between the next
@@ -154,12 +154,12 @@ impl RuleHooks {
                 self.pair_ends.remove(&key);
                 continue;
             }
-            let until = self.pair_ends.get_mut(&key).expect("a listed end");
+            let end = self.pair_ends.get_mut(&key).expect("a listed end");
             let (a, b) = key.colliders();
-            let ends = match until.count_step(dt) {
+            let ends = match end.count_step(dt) {
                 None => false,
                 Some(Due::Now) => true,
-                Some(Due::IfApart) => apart(&[a], &[b], colliders, until.margin()),
+                Some(Due::IfApart) => apart(&[a], &[b], colliders, end.until().margin()),
             };
             if ends {
                 self.pair_ends.remove(&key);

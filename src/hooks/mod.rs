@@ -177,7 +177,7 @@ pub struct RuleHooks {
     soft: soft_bodies::SoftBodies,
     /// The ends of pair overrides given one (see
     /// [`RuleHooks::set_pair_rule_until`]).
-    pair_ends: HashMap<PairKey, super::Until>,
+    pair_ends: HashMap<PairKey, super::model::Countdown>,
     /// The rule events, while a game asks for them (see
     /// [`RuleHooks::record_rule_events`]).
     recording: Option<Box<rule_events::Recording>>,

@@ -5,6 +5,8 @@
 //! hooks count the steps and remove the entry when its end comes (they can
 //! see the world, the rule set cannot).
 
+use smallvec::SmallVec;
+
 use super::super::rapier::prelude::Real;
 
 use super::super::{CollisionRule, CollisionRuleSet, Node};
@@ -180,33 +182,99 @@ impl Until {
         self.margin >= 0.0 && time
     }
 
-    /// Counts the step about to be taken, `dt` long: whether the rule ends
-    /// before it (`None` while the count runs). A count that is due stays
-    /// due.
-    pub(crate) fn count_step(&mut self, dt: Real) -> Option<Due> {
-        let due = match &mut self.count {
+    /// Whether the count has come before a step of `dt`, `counted` after
+    /// the end was given. A time rounds to the nearest whole number of
+    /// steps, and a time within a thousandth of a step of a half holds the
+    /// step: the `f32` rounding of a time as given, saved or stepped never
+    /// decides (`docs/semantics.md`, "Rules with an end").
+    pub(crate) fn comes(&self, counted: Clock, dt: Real) -> bool {
+        match self.count {
             Count::Apart => true,
-            Count::Steps(0) => true,
-            Count::Steps(left) => {
-                *left -= 1;
-                false
-            }
-            // The nearest whole number of steps: half a step left is none
-            // (and none stays none, whatever later steps last).
-            Count::Seconds(left) if *left < dt * 0.5 => {
-                *left = -1.0;
-                true
-            }
-            Count::Seconds(left) => {
-                *left -= dt;
-                false
-            }
-        };
-        match (due, self.wait_apart) {
-            (false, _) => None,
-            (true, true) => Some(Due::IfApart),
-            (true, false) => Some(Due::Now),
+            Count::Steps(steps) => counted.steps >= u64::from(steps),
+            Count::Seconds(seconds) => seconds_come(f64::from(seconds) - counted.time, dt),
         }
+    }
+
+    /// What is left of the count, `counted` after the end was given (`came`:
+    /// it has come, and none is left whatever later steps last).
+    pub(crate) fn left(&self, counted: Clock, came: bool) -> Until {
+        let count = match self.count {
+            Count::Apart => Count::Apart,
+            Count::Steps(steps) => {
+                Count::Steps(u64::from(steps).saturating_sub(counted.steps) as u32)
+            }
+            Count::Seconds(_) if came => Count::Seconds(-1.0),
+            Count::Seconds(seconds) => Count::Seconds((f64::from(seconds) - counted.time) as Real),
+        };
+        Until { count, ..*self }
+    }
+
+    /// How the rule ends once its count came.
+    pub(crate) fn due(&self) -> Due {
+        if self.wait_apart { Due::IfApart } else { Due::Now }
+    }
+}
+
+/// Whether a time with `left` seconds left has come before a step of `dt`
+/// (see [`Until::comes`]).
+pub(crate) fn seconds_come(left: f64, dt: Real) -> bool {
+    left < (0.5 - 1e-3) * f64::from(dt)
+}
+
+/// Steps counted and the simulated time they took. `f64`: a day at 60 Hz
+/// sums without losing the half step a time rounds by.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Clock {
+    pub(crate) steps: u64,
+    pub(crate) time: f64,
+}
+
+impl Clock {
+    /// Counts a step of `dt`.
+    pub(crate) fn tick(&mut self, dt: Real) {
+        self.steps += 1;
+        self.time += f64::from(dt);
+    }
+
+    /// What was counted since `earlier`.
+    pub(crate) fn since(self, earlier: Clock) -> Clock {
+        Clock {
+            steps: self.steps - earlier.steps,
+            time: self.time - earlier.time,
+        }
+    }
+}
+
+/// One end counted at every step: a pair override's, which lasts while
+/// its pair lives.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Countdown {
+    until: Until,
+    counted: Clock,
+    came: bool,
+}
+
+impl Countdown {
+    pub(crate) fn new(until: Until) -> Countdown {
+        Countdown {
+            until,
+            counted: Clock::default(),
+            came: false,
+        }
+    }
+
+    /// What is left of it.
+    pub(crate) fn until(&self) -> Until {
+        self.until.left(self.counted, self.came)
+    }
+
+    /// Counts the step about to be taken, `dt` long: whether the rule ends
+    /// before it (`None` while the count runs). A count that came stays
+    /// come.
+    pub(crate) fn count_step(&mut self, dt: Real) -> Option<Due> {
+        self.came = self.came || self.until.comes(self.counted, dt);
+        self.counted.tick(dt);
+        self.came.then(|| self.until.due())
     }
 }
 
@@ -334,7 +402,8 @@ impl CollisionRuleSet {
             return;
         }
         let record = self.records.get(id);
-        let keys: Vec<(Node, Node)> = record
+        // A ball's record holds one entry: no allocation for a handful.
+        let keys: SmallVec<[(Node, Node); 4]> = record
             .specific
             .keys()
             .map(|&other| (node, other))
@@ -378,30 +447,76 @@ impl CollisionRuleSet {
 
 #[cfg(test)]
 mod tests {
-    use super::{Due, Until};
+    use super::{Countdown, Due, Until};
 
     #[test]
     fn steps_hold_for_exactly_their_count() {
-        let mut until = Until::steps(2);
+        let mut until = Countdown::new(Until::steps(2));
         assert_eq!(until.count_step(0.1), None);
         assert_eq!(until.count_step(0.1), None);
         assert_eq!(until.count_step(0.1), Some(Due::IfApart));
         assert_eq!(until.count_step(0.1), Some(Due::IfApart), "a due count stays due");
+        assert_eq!(until.until().steps_left(), Some(0));
+    }
+
+    /// How many steps of `dt` a time holds, counted from `Until::seconds`.
+    fn held(seconds: f32, dt: f32) -> usize {
+        let mut until = Countdown::new(Until::seconds(seconds).even_if_overlapping());
+        (0..100_000).take_while(|_| until.count_step(dt).is_none()).count()
     }
 
     #[test]
     fn seconds_round_to_the_nearest_step() {
         let dt = 1.0 / 60.0;
         for (seconds, steps) in [(0.5, 30), (0.51, 31), (0.505, 30), (0.0, 0), (0.01, 1)] {
-            let mut until = Until::seconds(seconds).even_if_overlapping();
-            let held = (0..100).take_while(|_| until.count_step(dt).is_none()).count();
+            let held = held(seconds, dt);
             assert_eq!(held, steps, "Until::seconds({seconds}) at 60 Hz held {held} steps");
+        }
+    }
+
+    /// A time that falls on a half step holds that step, whatever the
+    /// `f32` rounding of the time and of `dt` (7.5 steps of 1/60 s hold 8).
+    #[test]
+    fn a_half_step_holds_the_step() {
+        for (seconds, hz, steps) in [(0.125, 60.0, 8), (0.075, 60.0, 5), (0.725, 60.0, 44), (0.25, 30.0, 8), (0.13, 50.0, 7)]
+        {
+            let held = held(seconds, 1.0 / hz);
+            assert_eq!(held, steps, "Until::seconds({seconds}) at {hz} Hz held {held} steps");
+        }
+        // Far from a half, a long time is counted without drift: 5.441 s
+        // at 144 Hz is 783.5 steps and a little more.
+        assert_eq!(held(5.441, 1.0 / 144.0), 784);
+    }
+
+    /// What is left, given again as a new end (a save loaded, an end handed
+    /// to another node), comes at the step the end would have come.
+    #[test]
+    fn what_is_left_comes_when_the_end_would_have() {
+        for hz in [30.0f32, 50.0, 60.0, 144.0] {
+            let dt = 1.0 / hz;
+            for millis in 0..2_000 {
+                let seconds = millis as f32 / 1_000.0;
+                let whole = held(seconds, dt);
+                for counted in [1, 3, whole.saturating_sub(1)] {
+                    let mut until = Countdown::new(Until::seconds(seconds).even_if_overlapping());
+                    for _ in 0..counted {
+                        until.count_step(dt);
+                    }
+                    let mut again = Countdown::new(until.until());
+                    let rest = (0..100_000).take_while(|_| again.count_step(dt).is_none()).count();
+                    assert_eq!(
+                        counted.min(whole) + rest,
+                        whole,
+                        "Until::seconds({seconds}) at {hz} Hz, given again after {counted} steps"
+                    );
+                }
+            }
         }
     }
 
     #[test]
     fn apart_is_due_at_once() {
-        assert_eq!(Until::apart().count_step(0.1), Some(Due::IfApart));
+        assert_eq!(Countdown::new(Until::apart()).count_step(0.1), Some(Due::IfApart));
     }
 
     #[test]

@@ -7,20 +7,12 @@
 //! to be apart is tested every step until it ends.
 
 use std::cmp::Reverse;
+use std::collections::btree_map::Entry;
 use std::collections::{BTreeMap, BTreeSet, BinaryHeap};
 
 use super::super::Node;
 use super::super::rapier::prelude::Real;
-use super::ending::{Count, Due, DueEnd, Until};
-
-/// The steps counted and the simulated time they took, since the set was
-/// made. `f64`: a day at 60 Hz sums without losing the half step that
-/// `Until::seconds` rounds by.
-#[derive(Clone, Copy, Debug, Default)]
-struct Clock {
-    steps: u64,
-    time: f64,
-}
+use super::ending::{Clock, Count, DueEnd, Until, seconds_come};
 
 /// An entry's end: as given, with the clock's reading then.
 #[derive(Clone, Copy, Debug)]
@@ -32,28 +24,6 @@ struct End {
     id: u64,
     /// Its count came: it ends now, or once its sides are apart.
     came: bool,
-}
-
-impl End {
-    /// The end as [`Until`] reports it at `now`: what is left of its count.
-    fn left(&self, now: Clock) -> Until {
-        let count = match self.until.count {
-            Count::Apart => Count::Apart,
-            Count::Steps(steps) => {
-                let counted = now.steps - self.given.steps;
-                Count::Steps(u64::from(steps).saturating_sub(counted) as u32)
-            }
-            // A count that came has none left, whatever later steps last.
-            Count::Seconds(_) if self.came => Count::Seconds(-1.0),
-            Count::Seconds(seconds) => {
-                Count::Seconds((f64::from(seconds) - (now.time - self.given.time)) as Real)
-            }
-        };
-        Until {
-            count,
-            ..self.until
-        }
-    }
 }
 
 /// A place in a list of ends by when they come: the step (or the time's
@@ -89,46 +59,56 @@ impl Endings {
 
     /// The end of `key`'s entry, with what is left of its count.
     pub(crate) fn get(&self, key: &(Node, Node)) -> Option<Until> {
-        self.ends.get(key).map(|end| end.left(self.clock))
+        self.ends.get(key).map(|end| end.until.left(self.clock.since(end.given), end.came))
     }
 
     /// Every end with what is left of its count, in the node order.
     pub(crate) fn iter(&self) -> impl Iterator<Item = ((Node, Node), Until)> + '_ {
-        self.ends.iter().map(|(&key, end)| (key, end.left(self.clock)))
+        self.ends
+            .iter()
+            .map(|(&key, end)| (key, end.until.left(self.clock.since(end.given), end.came)))
     }
 
     /// Gives `key`'s entry `until`, counted from now, in place of any end
     /// it had.
     pub(crate) fn insert(&mut self, key: (Node, Node), until: Until) {
         self.next_id += 1;
-        let id = self.next_id;
-        self.ends.insert(
-            key,
-            End {
-                until,
-                given: self.clock,
-                id,
-                came: false,
-            },
-        );
-        self.came.remove(&key);
-        match until.count {
-            Count::Apart => {
-                self.ends.get_mut(&key).expect("just given").came = true;
-                self.came.insert(key);
-            }
+        let end = End {
+            until,
+            given: self.clock,
+            id: self.next_id,
+            // An end at apart comes at once.
+            came: matches!(until.count, Count::Apart),
+        };
+        if let Some(was) = self.ends.insert(key, end)
+            && was.came
+        {
+            self.came.remove(&key);
+        }
+        self.list(key, end);
+        self.tidy_lists();
+    }
+
+    /// Lists `key`'s `end` under the step or the time it comes, or among
+    /// those that came.
+    fn list(&mut self, key: (Node, Node), end: End) {
+        if end.came {
+            self.came.insert(key);
+            return;
+        }
+        match end.until.count {
+            Count::Apart => unreachable!("an end at apart comes at once"),
             Count::Steps(steps) => {
-                let step = self.clock.steps + u64::from(steps);
-                self.by_step.push(Reverse((step, id, key)));
+                let step = end.given.steps + u64::from(steps);
+                self.by_step.push(Reverse((step, end.id, key)));
             }
             Count::Seconds(seconds) => {
-                // A count may be saved after it came (less than zero left):
-                // it comes at once.
-                let time = (self.clock.time + f64::from(seconds)).max(0.0);
-                self.by_time.push(Reverse((time.to_bits(), id, key)));
+                // A count saved after it came (less than zero left) comes
+                // at once: listed at zero.
+                let time = (end.given.time + f64::from(seconds)).max(0.0);
+                self.by_time.push(Reverse((time.to_bits(), end.id, key)));
             }
         }
-        self.tidy_lists();
     }
 
     /// Takes `key`'s end away, with what is left of its count.
@@ -137,16 +117,21 @@ impl Endings {
         if end.came {
             self.came.remove(key);
         }
-        Some(end.left(self.clock))
+        Some(end.until.left(self.clock.since(end.given), end.came))
     }
 
-    /// Moves `from`'s end to `to`, unless `to` has one, keeping what is left
-    /// of its count.
+    /// Moves `from`'s end to `to`, unless `to` has one: the same end, which
+    /// comes at the step it would have.
     pub(crate) fn hand_over(&mut self, from: (Node, Node), to: (Node, Node)) {
-        if let Some(until) = self.remove(&from)
-            && !self.ends.contains_key(&to)
-        {
-            self.insert(to, until);
+        let Some(end) = self.ends.remove(&from) else {
+            return;
+        };
+        if end.came {
+            self.came.remove(&from);
+        }
+        if let Entry::Vacant(slot) = self.ends.entry(to) {
+            slot.insert(end);
+            self.list(to, end);
         }
     }
 
@@ -163,18 +148,14 @@ impl Endings {
             self.by_step.pop();
             self.come(id, key);
         }
-        // The nearest whole number of steps: an end with less than half a
-        // step left comes now.
-        let half_step = f64::from(dt) * 0.5;
         while let Some(&Reverse((time, id, key))) = self.by_time.peek() {
-            if f64::from_bits(time) - now.time >= half_step {
+            if !seconds_come(f64::from_bits(time) - now.time, dt) {
                 break;
             }
             self.by_time.pop();
             self.come(id, key);
         }
-        self.clock.steps += 1;
-        self.clock.time += f64::from(dt);
+        self.clock.tick(dt);
 
         let mut due = Vec::with_capacity(self.came.len());
         let ends = &mut self.ends;
@@ -187,8 +168,8 @@ impl Endings {
             due.push(DueEnd {
                 node,
                 other,
-                due: if until.wait_apart { Due::IfApart } else { Due::Now },
-                margin: until.margin,
+                due: until.due(),
+                margin: until.margin(),
             });
             true
         });
@@ -216,22 +197,13 @@ impl Endings {
         if self.by_step.len() + self.by_time.len() <= 2 * self.ends.len() + 64 {
             return;
         }
-        let mut by_step = Vec::new();
-        let mut by_time = Vec::new();
-        for (&key, end) in self.ends.iter().filter(|(_, end)| !end.came) {
-            match end.until.count {
-                Count::Apart => {}
-                Count::Steps(steps) => {
-                    by_step.push(Reverse((end.given.steps + u64::from(steps), end.id, key)));
-                }
-                Count::Seconds(seconds) => {
-                    let time = (end.given.time + f64::from(seconds)).max(0.0);
-                    by_time.push(Reverse((time.to_bits(), end.id, key)));
-                }
-            }
+        self.by_step.clear();
+        self.by_time.clear();
+        let waiting: Vec<((Node, Node), End)> =
+            self.ends.iter().filter(|(_, end)| !end.came).map(|(&key, &end)| (key, end)).collect();
+        for (key, end) in waiting {
+            self.list(key, end);
         }
-        self.by_step = by_step.into();
-        self.by_time = by_time.into();
     }
 }
 
@@ -244,34 +216,33 @@ mod tests {
 
     use super::super::super::Node;
     use super::super::super::rapier::prelude::{Real, RigidBodyHandle};
-    use super::super::ending::{DueEnd, Until};
+    use super::super::ending::{Countdown, DueEnd, Until};
     use super::Endings;
 
-    fn key(i: u8) -> (Node, Node) {
+    fn key(i: u16) -> (Node, Node) {
         let body = |i: u32| Node::Body(RigidBodyHandle::from_raw_parts(i, 0));
-        (body(u32::from(i % 3)), body(10 + u32::from(i / 3)))
+        (body(u32::from(i % 3)), body(1_000 + u32::from(i / 3)))
     }
 
     /// What an edit or a step does to the ends.
     #[derive(Clone, Debug)]
     enum Op {
-        Give(u8, Until),
-        TakeAway(u8),
-        HandOver(u8, u8),
+        Give(u16, Until),
+        TakeAway(u16),
+        HandOver(u16, u16),
         /// The entry goes another way (its object left): its end stays
         /// listed until a count drops it.
-        EntryGoes(u8),
+        EntryGoes(u16),
         Count(Real),
     }
 
-    /// An end of any kind. Times are odd multiples of 1/480 s and steps
-    /// last 1/60 or 1/120 s, so no count is ever half a step from coming,
-    /// where rounding would decide.
+    /// An end of any kind. Times are multiples of 1/480 s and steps last
+    /// 1/60 or 1/120 s: many fall on a half step.
     fn until() -> impl Strategy<Value = Until> {
         let count = prop_oneof![
             Just(Until::apart()),
             (0u32..6).prop_map(Until::steps),
-            (0u32..40).prop_map(|m| Until::seconds((2 * m + 1) as Real / 480.0)),
+            (0u32..80).prop_map(|m| Until::seconds(m as Real / 480.0)),
         ];
         (count, any::<bool>(), 0u8..3).prop_map(|(until, overlapping, margin)| {
             let until = until.with_margin(Real::from(margin) * 0.1);
@@ -283,12 +254,13 @@ mod tests {
         })
     }
 
-    fn op() -> impl Strategy<Value = Op> {
+    /// An edit of the ends of `keys` entries, or a step.
+    fn op(keys: u16) -> impl Strategy<Value = Op> {
         prop_oneof![
-            3 => (0u8..9, until()).prop_map(|(k, u)| Op::Give(k, u)),
-            1 => (0u8..9).prop_map(Op::TakeAway),
-            1 => (0u8..9, 0u8..9).prop_map(|(a, b)| Op::HandOver(a, b)),
-            1 => (0u8..9).prop_map(Op::EntryGoes),
+            3 => (0..keys, until()).prop_map(|(k, u)| Op::Give(k, u)),
+            1 => (0..keys).prop_map(Op::TakeAway),
+            1 => (0..keys, 0..keys).prop_map(|(a, b)| Op::HandOver(a, b)),
+            1 => (0..keys).prop_map(Op::EntryGoes),
             4 => prop_oneof![Just(1.0 / 60.0), Just(1.0 / 120.0)].prop_map(Op::Count),
         ]
     }
@@ -296,21 +268,21 @@ mod tests {
     /// The ends as the hooks counted them before the clock: each end
     /// counted down at every step, every end walked.
     #[derive(Default)]
-    struct Naive(BTreeMap<(Node, Node), Until>);
+    struct Naive(BTreeMap<(Node, Node), Countdown>);
 
     impl Naive {
         fn count(&mut self, dt: Real, holds: impl Fn(Node, Node) -> bool) -> Vec<DueEnd> {
             let mut due = Vec::new();
-            self.0.retain(|&(node, other), until| {
+            self.0.retain(|&(node, other), end| {
                 if !holds(node, other) {
                     return false;
                 }
-                if let Some(came) = until.count_step(dt) {
+                if let Some(came) = end.count_step(dt) {
                     due.push(DueEnd {
                         node,
                         other,
                         due: came,
-                        margin: until.margin(),
+                        margin: end.until().margin(),
                     });
                 }
                 true
@@ -334,64 +306,116 @@ mod tests {
         }
     }
 
-    proptest! {
-        /// Counting against the clock gives what counting every end at
-        /// every step gave: the same ends come at the same steps, in the
-        /// same order, and each end reports what is left of it.
-        #[test]
-        fn the_clock_counts_as_every_end_counted_down(ops in prop::collection::vec(op(), 1..120)) {
-            let mut clocked = Endings::default();
-            let mut naive = Naive::default();
-            let mut held: BTreeSet<(Node, Node)> = BTreeSet::new();
-            // An entry goes another way only with one of its objects, whose
-            // handle is dead from then on: nothing gives it an end again.
-            let mut dead: BTreeSet<(Node, Node)> = BTreeSet::new();
-            for op in ops {
-                match op {
-                    Op::Give(k, _) | Op::HandOver(_, k) if dead.contains(&key(k)) => {}
-                    Op::Give(k, until) => {
-                        held.insert(key(k));
-                        clocked.insert(key(k), until);
-                        naive.0.insert(key(k), until);
-                    }
-                    Op::TakeAway(k) => {
-                        let (a, b) = (clocked.remove(&key(k)), naive.0.remove(&key(k)));
-                        // An end whose entry went another way is dropped
-                        // by the next count in one, by the next sweep in
-                        // the other: either is gone for good.
-                        if held.remove(&key(k)) {
-                            prop_assert!(same(a, b), "{:?} taken away: {:?} against {:?}", key(k), a, b);
-                        }
-                    }
-                    // An entry's end is handed over with the entry, which
-                    // is still held, to another node (`endings_leave`).
-                    Op::HandOver(from, to) if from != to && held.contains(&key(from)) => {
-                        if let Some(until) = naive.0.remove(&key(from)) {
-                            naive.0.entry(key(to)).or_insert(until);
-                            held.insert(key(to));
-                        }
-                        held.remove(&key(from));
-                        clocked.hand_over(key(from), key(to));
-                    }
-                    Op::HandOver(..) => {}
-                    Op::EntryGoes(k) => {
-                        held.remove(&key(k));
-                        dead.insert(key(k));
-                    }
-                    Op::Count(dt) => {
-                        let holds = |n, o| held.contains(&(n, o));
-                        let due = clocked.count(dt, holds);
-                        prop_assert_eq!(&due, &naive.count(dt, holds), "the ends that came");
+    /// Runs `ops` on the clocked ends and on every end counted down at
+    /// every step: the same ends come at the same steps, in the same
+    /// order, and each end reports what is left of it.
+    fn compare(ops: Vec<Op>) {
+        let mut clocked = Endings::default();
+        let mut naive = Naive::default();
+        let mut held: BTreeSet<(Node, Node)> = BTreeSet::new();
+        // An entry goes another way only with one of its objects, whose
+        // handle is dead from then on: nothing gives it an end again.
+        let mut dead: BTreeSet<(Node, Node)> = BTreeSet::new();
+        for op in ops {
+            match op {
+                Op::Give(k, _) | Op::HandOver(_, k) if dead.contains(&key(k)) => {}
+                Op::Give(k, until) => {
+                    held.insert(key(k));
+                    clocked.insert(key(k), until);
+                    naive.0.insert(key(k), Countdown::new(until));
+                }
+                Op::TakeAway(k) => {
+                    let (a, b) = (clocked.remove(&key(k)), naive.0.remove(&key(k)).map(|c| c.until()));
+                    // An end whose entry went another way is dropped
+                    // by the next count in one, by the next sweep in
+                    // the other: either is gone for good.
+                    if held.remove(&key(k)) {
+                        assert!(same(a, b), "{:?} taken away: {:?} against {:?}", key(k), a, b);
                     }
                 }
-                for k in held.iter() {
-                    prop_assert!(
-                        same(clocked.get(k), naive.0.get(k).copied()),
-                        "{:?}: {:?} counted against the clock, {:?} counted down",
-                        k, clocked.get(k), naive.0.get(k)
-                    );
+                // An entry's end is handed over with the entry, which
+                // is still held, to another node (`endings_leave`).
+                Op::HandOver(from, to) if from != to && held.contains(&key(from)) => {
+                    if let Some(until) = naive.0.remove(&key(from)) {
+                        naive.0.entry(key(to)).or_insert(until);
+                        held.insert(key(to));
+                    }
+                    held.remove(&key(from));
+                    clocked.hand_over(key(from), key(to));
+                }
+                Op::HandOver(..) => {}
+                Op::EntryGoes(k) => {
+                    held.remove(&key(k));
+                    dead.insert(key(k));
+                }
+                Op::Count(dt) => {
+                    let holds = |n, o| held.contains(&(n, o));
+                    let due = clocked.count(dt, holds);
+                    assert_eq!(&due, &naive.count(dt, holds), "the ends that came");
+                    for k in held.iter() {
+                        assert!(
+                            same(clocked.get(k), naive.0.get(k).map(Countdown::until)),
+                            "{:?}: {:?} counted against the clock, {:?} counted down",
+                            k, clocked.get(k), naive.0.get(k).map(Countdown::until)
+                        );
+                    }
                 }
             }
+        }
+    }
+
+    proptest! {
+        /// Counting against the clock gives what counting every end at
+        /// every step gave, with a few entries.
+        #[test]
+        fn the_clock_counts_as_every_end_counted_down(ops in prop::collection::vec(op(9), 1..120)) {
+            compare(ops);
+        }
+
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        /// The same with enough entries that ends whose entry went are
+        /// swept, and the lists made again from the ends.
+        #[test]
+        fn the_sweeps_keep_every_live_end(ops in prop::collection::vec(op(300), 300..900)) {
+            compare(ops);
+        }
+    }
+
+    /// Ends given again and again leave stale listings behind; once they
+    /// outnumber the ends, the lists are made again from the ends, and
+    /// every end still comes at its step.
+    #[test]
+    fn lists_made_again_keep_every_end_at_its_step() {
+        let mut endings = Endings::default();
+        let body = |i: u32| Node::Body(RigidBodyHandle::from_raw_parts(i, 0));
+        let keys: Vec<(Node, Node)> = (0..100).map(|i| (body(i), body(5_000))).collect();
+        for round in 0..4 {
+            for (i, &key) in keys.iter().enumerate() {
+                endings.insert(key, Until::steps((i % 10) as u32 + 3 - round).even_if_overlapping());
+            }
+        }
+        // One end given again until the lists are made again: then each
+        // end is listed once.
+        let last = keys[99];
+        let mut given = 0;
+        while endings.by_step.len() > keys.len() {
+            endings.insert(last, Until::steps(9).even_if_overlapping());
+            given += 1;
+            assert!(given < 1_000, "{} listings for {} ends: never made again", endings.by_step.len(), keys.len());
+        }
+        assert_eq!(endings.by_step.len(), keys.len(), "one listing an end");
+        let mut came = vec![None; keys.len()];
+        for step in 0..20 {
+            for end in endings.count(1.0 / 60.0, |_, _| true) {
+                let i = keys.iter().position(|&k| k == (end.node, end.other)).expect("a key");
+                came[i].get_or_insert(step);
+            }
+        }
+        for (i, came) in came.iter().enumerate() {
+            assert_eq!(*came, Some(i % 10), "the end of entry {i}, Until::steps({})", i % 10);
         }
     }
 

@@ -150,7 +150,14 @@ impl From<CollisionRuleSet> for SavedRuleSet {
         group_rules.sort();
         let mut parents: Vec<_> = rules.parents().collect();
         parents.sort_by_key(|(c, _)| c.into_raw_parts());
-        let mut endings: Vec<_> = rules.endings.iter().map(|((n, o), u)| (n, o, u)).collect();
+        // An end whose entry went with a removed object is not saved: the
+        // count drops it when it comes, the save at once.
+        let mut endings: Vec<_> = rules
+            .endings
+            .iter()
+            .filter(|&((n, o), _)| rules.specific(n, o).is_decided())
+            .map(|((n, o), u)| (n, o, u))
+            .collect();
         endings.sort_by_key(|&(n, o, _)| (n, o));
         let writes = rules.writes.iter().map(|(h, &w)| (h, w)).collect();
         let mut decisions: Vec<_> = rules.decisions.iter().map(|(&(n, o), &d)| (n, o, d)).collect();

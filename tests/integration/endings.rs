@@ -387,3 +387,89 @@ fn an_end_goes_with_its_record_when_its_node_takes_another_or_leaves() {
     rules.remove_node(b);
     assert_eq!(rules.specific_until(d, x), Some(Until::steps(3)), "d carries the shared entry's end");
 }
+
+#[test]
+fn a_spawner_whose_balls_carry_ends_sees_each_end_come_at_its_step() {
+    // Five balls a step, each ignoring a far turret for a count of steps or
+    // a time (many on a half step: 7.5 steps hold 8), waiting for apart or
+    // not, the entry the ball's or the turret's; each ball leaves after 40
+    // steps, before or after its end. After `k` steps an entry is there
+    // while `k` is within what it holds.
+    let mut scene = Scene::new();
+    let turret = scene.world.insert_body(RigidBodyBuilder::fixed().translation(at(50.0, 1.0)));
+    scene.world.insert_collider(cuboid(0.5, 1.0, 0.5), Some(turret));
+    let mut hooks = RuleHooks::default();
+    let dt = scene.world.integration_parameters.dt;
+    assert!((dt - 1.0 / 60.0).abs() < 1e-9, "the scenes step at 60 Hz");
+    // (ball, step it was given at, steps it holds, counted in steps)
+    let mut balls: Vec<(RigidBodyHandle, usize, usize, bool)> = Vec::new();
+    // The entry about the pair: the ball's on odd steps, the turret's else.
+    let entry = |ball: RigidBodyHandle, born: usize| -> (Node, Node) {
+        if born % 2 == 1 {
+            (ball.into(), turret.into())
+        } else {
+            (turret.into(), ball.into())
+        }
+    };
+    for step in 0..300usize {
+        for i in 0..5usize {
+            let ball = scene.world.insert_body(
+                RigidBodyBuilder::dynamic().translation(at(i as f32 * 2.0 - 4.0, 3.0 + (step % 7) as f32)),
+            );
+            scene.world.insert_collider(ColliderBuilder::ball(0.2), Some(ball));
+            // A quarter step at a time: 30 to 270 quarters of 1/60 s, some
+            // longer than the ball stays.
+            let quarters = 30 + (step * 5 + i * 13) % 240;
+            let (until, holds, in_steps) = if (step + i) % 3 == 0 {
+                let n = quarters / 4;
+                (Until::steps(n as u32), n, true)
+            } else {
+                let seconds = quarters as f32 / 240.0;
+                // The nearest whole number of steps, a half step held.
+                (Until::seconds(seconds), (quarters + 2) / 4, false)
+            };
+            let until = if i % 2 == 0 { until.even_if_overlapping() } else { until };
+            let (owner, subject) = entry(ball, step);
+            hooks.rules_mut().set_specific_until(owner, subject, CollisionRule::NoPair, until);
+            balls.push((ball, step, holds, in_steps));
+        }
+        balls.retain(|&(ball, born, _, _)| {
+            let old = step - born >= 40;
+            if old {
+                scene.world.remove_body(ball);
+            }
+            !old
+        });
+        hooks.step(&mut scene.world);
+        for &(ball, born, holds, in_steps) in &balls {
+            let counted = step + 1 - born;
+            let rules = hooks.rules();
+            let (owner, subject) = entry(ball, born);
+            let there = rules.specific(owner, subject).is_decided();
+            assert_eq!(
+                there,
+                counted <= holds,
+                "step {step}: a ball given {holds} steps ({}) has its entry after {counted}: {there}",
+                if in_steps { "counted in steps" } else { "in time" }
+            );
+            if there && in_steps {
+                let left = rules.specific_until(owner, subject).and_then(|u| u.steps_left());
+                assert_eq!(left, Some((holds - counted) as u32), "steps left after {counted} of {holds}");
+            }
+        }
+    }
+    #[cfg(feature = "serde")]
+    {
+        // Saved: the ends of the live entries, none of a ball that left.
+        let saved = serde_json::to_value(hooks.rules()).expect("a rule set saves");
+        let live = balls
+            .iter()
+            .filter(|&&(ball, born, ..)| {
+                let (owner, subject) = entry(ball, born);
+                hooks.rules().specific(owner, subject).is_decided()
+            })
+            .count();
+        let ends = saved["endings"].as_array().map_or(0, Vec::len);
+        assert_eq!(ends, live, "{ends} ends saved for {live} live entries with one");
+    }
+}

@@ -14,6 +14,8 @@
 
 use hashbrown::hash_map::Entry;
 use hashbrown::{HashMap, HashSet};
+use smallvec::SmallVec;
+
 use super::super::rapier::prelude::*;
 
 use super::carriers::side_cost;
@@ -216,22 +218,24 @@ impl Decisions {
         node: Node,
         ended: impl Fn((Node, Node)) -> bool,
         reached: impl Fn(Node) -> bool,
-    ) -> Vec<Node> {
+    ) -> SmallVec<[Node; 4]> {
         // A world without entries (a streamed level of groups) asks this of
         // every node it removes.
         if self.listed.is_empty() {
-            return Vec::new();
+            return SmallVec::new();
         }
-        let mut gone: Vec<(Node, Node)> = self.listed(node).filter(|&e| ended(e)).collect();
+        // A removed ball ends the one entry about its turret: a handful,
+        // kept off the heap.
+        let mut gone: SmallVec<[(Node, Node); 4]> = self.listed(node).filter(|&e| ended(e)).collect();
         if gone.is_empty() {
-            return Vec::new();
+            return SmallVec::new();
         }
         // In the node order, whatever the set's.
         gone.sort_unstable();
-        let mut nodes: Vec<Node> = gone.iter().flat_map(|&(x, y)| [x, y]).collect();
+        let mut nodes: SmallVec<[Node; 4]> = gone.iter().flat_map(|&(x, y)| [x, y]).collect();
         nodes.sort_unstable();
         nodes.dedup();
-        let before: Vec<Footprint> = nodes.iter().map(|&n| self.footprint(n)).collect();
+        let before: SmallVec<[Footprint; 4]> = nodes.iter().map(|&n| self.footprint(n)).collect();
         for entry in gone {
             self.forget(entry);
         }
@@ -870,8 +874,10 @@ impl Decisions {
         if carried.iter().any(|c| others.contains(c)) {
             return false;
         }
-        let chains = |side: &[ColliderHandle]| -> Vec<Node> {
-            let mut nodes: Vec<Node> = side
+        // A side is usually a ball and its body, or a turret: a few nodes,
+        // kept off the heap.
+        let chains = |side: &[ColliderHandle]| -> SmallVec<[Node; 8]> {
+            let mut nodes: SmallVec<[Node; 8]> = side
                 .iter()
                 .flat_map(|&c| rules.hierarchy.chain(bodies, colliders, Node::Collider(c)))
                 .collect();

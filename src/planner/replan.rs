@@ -50,10 +50,11 @@ pub(crate) fn replan_some(
     // is planned whole (see `put_base`), so it holds for every collider here.
     let shallower = plan.personal_depths.shallower();
     let mut asked: Vec<ColliderHandle> = Vec::with_capacity(handles.len());
-    let mut seen: HashSet<ColliderHandle> = HashSet::new();
+    // Sized once: growing a set rehashes it each time it doubles.
+    let mut seen: HashSet<ColliderHandle> = HashSet::with_capacity(2 * handles.len());
     // Asked colliders new to the plan, or whose plan before the entries or
     // body changed.
-    let mut moved: HashSet<ColliderHandle> = HashSet::new();
+    let mut moved: HashSet<ColliderHandle> = HashSet::with_capacity(handles.len());
     for &handle in handles {
         if pinned.contains(&handle) {
             return None;
@@ -110,11 +111,13 @@ pub(crate) fn replan_some(
     }
     // What the decisions say of each node of the entries, before: a node
     // whose say the new decisions leave as it was keeps its colliders' plans.
-    let before: HashMap<Node, Footprint> = entries
-        .iter()
+    let mut before: HashMap<Node, Footprint> = HashMap::with_capacity(2 * entries.len());
+    before.extend(
+        entries
+            .iter()
         .flat_map(|&(x, y)| [x, y])
-        .map(|node| (node, plan.decisions.footprint(node)))
-        .collect();
+            .map(|node| (node, plan.decisions.footprint(node))),
+    );
     let changed = {
         let Plan {
             base,

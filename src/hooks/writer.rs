@@ -232,13 +232,17 @@ impl RuleHooks {
         if now.collision != target.collision || now.solver != target.solver {
             self.queued.regrouped.insert(handle);
         }
-        // A collider of a non-dynamic body may never wake: when the hook
-        // takes over (or lets go of) its pairs, Rapier must look at them,
-        // and a change of hook flags alone sets no change flag Rapier's
-        // narrow phase reads. That holds the first time a rule reaches the
-        // collider too: a one-way surface given to a fixed cube reaches its
-        // pair with another fixed cube at once.
-        let rehook = now.hooks != target.hooks && !dynamic;
+        // A change of hook flags alone sets no change flag Rapier's narrow
+        // phase reads. A collider of a non-dynamic body may never wake: when
+        // the hook takes over (or lets go of) its pairs, Rapier must look at
+        // them. That holds the first time a rule reaches the collider too: a
+        // one-way surface given to a fixed cube reaches its pair with
+        // another fixed cube at once. A moving collider that loses its hook
+        // flags has pairs Rapier may recycle (a pair without hooks whose
+        // pose barely moved keeps its contacts as they were): they would
+        // keep what the hook last answered (`docs/semantics.md`, "Decisions
+        // about live pairs").
+        let rehook = now.hooks != target.hooks && (!dynamic || target.hooks.is_empty());
         if rehook {
             self.queued.regrouped.insert(handle);
         }

@@ -473,3 +473,79 @@ fn a_spawner_whose_balls_carry_ends_sees_each_end_come_at_its_step() {
         assert_eq!(ends, live, "{ends} ends saved for {live} live entries with one");
     }
 }
+
+/// How a test drops a pair override before a given step.
+#[derive(Clone, Copy, Debug)]
+enum Drop {
+    /// `set_pair_rule_until` with this end.
+    Until(Until),
+    /// `set_pair_rule(.., Defer)` before the step.
+    Defer,
+    /// `force_recalculation` of the cube's body before the step.
+    Force,
+}
+
+/// Found by trying the overrides with an end from the docs alone: an
+/// override that ended was reported gone in time, but the cube kept falling
+/// through the floor one or two steps more. The side hooked for the
+/// override went back to Rapier's settings, and a dynamic collider's pair
+/// whose hook flags went is one Rapier 0.36 may recycle: it kept the
+/// solver flags the hook had given it (no impulses) until the cube had
+/// moved far enough. However the override goes, the floor pushes in the
+/// first step without it.
+#[test]
+fn the_floor_pushes_in_the_first_step_after_an_override_goes() {
+    // (how, the steps the override holds)
+    let rows = [
+        (Drop::Until(Until::steps(10).even_if_overlapping()), 10),
+        // 7.5 steps at 60 Hz: the half step holds.
+        (Drop::Until(Until::seconds(0.125).even_if_overlapping()), 8),
+        (Drop::Until(Until::steps(3).even_if_overlapping()), 3),
+        (Drop::Defer, 10),
+        (Drop::Force, 10),
+    ];
+    for (how, holds) in rows {
+        let mut scene = Scene::new();
+        let (body, c) = scene.cube(0.0, 0.5);
+        let floor = scene.floor;
+        let mut hooks = RuleHooks::default();
+        for _ in 0..30 {
+            hooks.step(&mut scene.world);
+        }
+        let set = match how {
+            Drop::Until(until) => hooks.set_pair_rule_until(&scene.world, c, floor, CollisionRule::NoResponse, until),
+            Drop::Defer | Drop::Force => hooks.set_pair_rule(&scene.world, c, floor, CollisionRule::NoResponse),
+        };
+        assert!(set, "{how:?}: the cube rests on the floor, a live pair");
+        let pushes = |world: &PhysicsWorld| {
+            world.narrow_phase.contact_pair(c, floor).is_some_and(|pair| {
+                pair.manifolds()
+                    .iter()
+                    .any(|m| m.data.solver_flags.contains(SolverFlags::COMPUTE_RIGID_IMPULSES))
+            })
+        };
+        for step in 1..=holds + 1 {
+            if step == holds + 1 {
+                match how {
+                    Drop::Until(_) => {}
+                    Drop::Defer => {
+                        hooks.set_pair_rule(&scene.world, c, floor, CollisionRule::Defer);
+                    }
+                    Drop::Force => hooks.force_recalculation(body),
+                }
+            }
+            hooks.step(&mut scene.world);
+            let (rule, vy) = (hooks.pair_rule(&scene.world, c, floor), scene.world.bodies[body].linvel().y);
+            let expected = if step <= holds { CollisionRule::NoResponse } else { CollisionRule::Normal };
+            assert_eq!(rule, Some(expected), "{how:?}, step {step}: the pair's rule");
+            assert_eq!(
+                pushes(&scene.world),
+                step > holds,
+                "{how:?}, step {step}: the floor pushes only once the override is gone \
+                 (the cube's vertical velocity is {vy})"
+            );
+        }
+        let vy = scene.world.bodies[body].linvel().y;
+        assert!(vy >= 0.0, "{how:?}: the floor stopped the cube's fall at once: vy = {vy}");
+    }
+}

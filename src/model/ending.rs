@@ -184,9 +184,10 @@ impl Until {
 
     /// Whether the count has come before a step of `dt`, `counted` after
     /// the end was given. A time rounds to the nearest whole number of
-    /// steps, and a time within a thousandth of a step of a half holds the
-    /// step: the `f32` rounding of a time as given, saved or stepped never
-    /// decides (`docs/semantics.md`, "Rules with an end").
+    /// steps, and a time within [`HALF_STEP_SLACK`] of a step of a half
+    /// holds the step: the `f32` rounding of a time as given, saved or
+    /// stepped does not decide, for counts up to about 8,000 steps
+    /// (`docs/semantics.md`, "Rules with an end").
     pub(crate) fn comes(&self, counted: Clock, dt: Real) -> bool {
         match self.count {
             Count::Apart => true,
@@ -218,8 +219,14 @@ impl Until {
 /// Whether a time with `left` seconds left has come before a step of `dt`
 /// (see [`Until::comes`]).
 pub(crate) fn seconds_come(left: f64, dt: Real) -> bool {
-    left < (0.5 - 1e-3) * f64::from(dt)
+    left < (0.5 - HALF_STEP_SLACK) * f64::from(dt)
 }
+
+/// How near a half step, in steps, a time holds that step: above the
+/// `f32` rounding of a time and a timestep for counts up to about 8,000
+/// steps (each rounds by up to 6e-8 of itself), and far below anything a
+/// project would mean.
+pub(crate) const HALF_STEP_SLACK: f64 = 1e-3;
 
 /// Steps counted and the simulated time they took. `f64`: a day at 60 Hz
 /// sums without losing the half step a time rounds by.
@@ -434,9 +441,16 @@ impl CollisionRuleSet {
     /// (`docs/architecture.md`, "Cost per step").
     pub(crate) fn count_ends(&mut self, dt: Real) -> Vec<DueEnd> {
         let mut endings = std::mem::take(&mut self.endings);
-        let due = endings.count(dt, |node, other| self.specific(node, other).is_decided());
+        let due = endings.count(dt, |node, other| self.end_holds((node, other)));
         self.endings = endings;
         due
+    }
+
+    /// Whether the entry of an end is still held: the end of an entry that
+    /// went another way (with a removed object, say) ends nothing, and is
+    /// neither counted, nor saved, nor loaded.
+    pub(super) fn end_holds(&self, (node, other): (Node, Node)) -> bool {
+        self.specific(node, other).is_decided()
     }
 
     /// Whether any entry has an end.
@@ -486,6 +500,23 @@ mod tests {
         // Far from a half, a long time is counted without drift: 5.441 s
         // at 144 Hz is 783.5 steps and a little more.
         assert_eq!(held(5.441, 1.0 / 144.0), 784);
+    }
+
+    /// The half step holds for counts up to 8,000 steps, at any common
+    /// rate; past about that, the `f32` rounding of the time and of `dt`
+    /// may pass [`HALF_STEP_SLACK`] and decide (`docs/semantics.md`,
+    /// "Rules with an end").
+    #[test]
+    fn a_half_step_holds_for_counts_up_to_8000_steps() {
+        for hz in [30.0f32, 50.0, 60.0, 120.0, 144.0, 240.0] {
+            for k in (0..8_000u32).step_by(97).chain([7_999]) {
+                let seconds = (k as f32 + 0.5) / hz;
+                let held = held(seconds, 1.0 / hz);
+                assert_eq!(held, k as usize + 1, "Until::seconds({seconds}) at {hz} Hz, {k}.5 steps, held {held}");
+            }
+        }
+        // 10,985.5 steps at 60 Hz: the rounding is 1.3 thousandths of a step.
+        assert_eq!(held(10_985.5 / 60.0, 1.0 / 60.0), 10_985);
     }
 
     /// What is left, given again as a new end (a save loaded, an end handed

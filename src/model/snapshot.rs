@@ -155,7 +155,7 @@ impl From<CollisionRuleSet> for SavedRuleSet {
         let mut endings: Vec<_> = rules
             .endings
             .iter()
-            .filter(|&((n, o), _)| rules.specific(n, o).is_decided())
+            .filter(|&(key, _)| rules.end_holds(key))
             .map(|((n, o), u)| (n, o, u))
             .collect();
         endings.sort_by_key(|&(n, o, _)| (n, o));
@@ -260,7 +260,7 @@ impl TryFrom<SavedRuleSet> for CollisionRuleSet {
         }
         for (node, other, until) in saved.endings {
             // An end of an entry the save does not hold ends nothing.
-            if rules.specific(node, other).is_decided() {
+            if rules.end_holds((node, other)) {
                 rules.endings.insert((node, other), until);
             }
         }

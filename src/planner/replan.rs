@@ -115,7 +115,7 @@ pub(crate) fn replan_some(
     before.extend(
         entries
             .iter()
-        .flat_map(|&(x, y)| [x, y])
+            .flat_map(|&(x, y)| [x, y])
             .map(|node| (node, plan.decisions.footprint(node))),
     );
     let changed = {

@@ -388,21 +388,32 @@ fn an_end_goes_with_its_record_when_its_node_takes_another_or_leaves() {
     assert_eq!(rules.specific_until(d, x), Some(Until::steps(3)), "d carries the shared entry's end");
 }
 
+/// A ball of the spawner below, and its end.
+struct Ball {
+    body: RigidBodyHandle,
+    /// The step its end was given at.
+    born: usize,
+    /// The steps its end holds.
+    holds: usize,
+    /// Its end is counted in steps (else in time).
+    in_steps: bool,
+}
+
 #[test]
 fn a_spawner_whose_balls_carry_ends_sees_each_end_come_at_its_step() {
     // Five balls a step, each ignoring a far turret for a count of steps or
-    // a time (many on a half step: 7.5 steps hold 8), waiting for apart or
-    // not, the entry the ball's or the turret's; each ball leaves after 40
-    // steps, before or after its end. After `k` steps an entry is there
-    // while `k` is within what it holds.
+    // a time (many on a half step: 7.5 steps hold 8), told to end even if
+    // overlapping or not (the turret is far: the sides are apart when the
+    // count comes), the entry the ball's or the turret's; each ball leaves
+    // after 40 steps, before or after its end. After `k` steps an entry is
+    // there while `k` is within what it holds.
     let mut scene = Scene::new();
     let turret = scene.world.insert_body(RigidBodyBuilder::fixed().translation(at(50.0, 1.0)));
     scene.world.insert_collider(cuboid(0.5, 1.0, 0.5), Some(turret));
     let mut hooks = RuleHooks::default();
     let dt = scene.world.integration_parameters.dt;
     assert!((dt - 1.0 / 60.0).abs() < 1e-9, "the scenes step at 60 Hz");
-    // (ball, step it was given at, steps it holds, counted in steps)
-    let mut balls: Vec<(RigidBodyHandle, usize, usize, bool)> = Vec::new();
+    let mut balls: Vec<Ball> = Vec::new();
     // The entry about the pair: the ball's on odd steps, the turret's else.
     let entry = |ball: RigidBodyHandle, born: usize| -> (Node, Node) {
         if born % 2 == 1 {
@@ -431,20 +442,31 @@ fn a_spawner_whose_balls_carry_ends_sees_each_end_come_at_its_step() {
             let until = if i % 2 == 0 { until.even_if_overlapping() } else { until };
             let (owner, subject) = entry(ball, step);
             hooks.rules_mut().set_specific_until(owner, subject, CollisionRule::NoPair, until);
-            balls.push((ball, step, holds, in_steps));
+            balls.push(Ball {
+                body: ball,
+                born: step,
+                holds,
+                in_steps,
+            });
         }
-        balls.retain(|&(ball, born, _, _)| {
-            let old = step - born >= 40;
+        balls.retain(|ball| {
+            let old = step - ball.born >= 40;
             if old {
-                scene.world.remove_body(ball);
+                scene.world.remove_body(ball.body);
             }
             !old
         });
         hooks.step(&mut scene.world);
-        for &(ball, born, holds, in_steps) in &balls {
+        for &Ball {
+            body,
+            born,
+            holds,
+            in_steps,
+        } in &balls
+        {
             let counted = step + 1 - born;
             let rules = hooks.rules();
-            let (owner, subject) = entry(ball, born);
+            let (owner, subject) = entry(body, born);
             let there = rules.specific(owner, subject).is_decided();
             assert_eq!(
                 there,
@@ -464,8 +486,8 @@ fn a_spawner_whose_balls_carry_ends_sees_each_end_come_at_its_step() {
         let saved = serde_json::to_value(hooks.rules()).expect("a rule set saves");
         let live = balls
             .iter()
-            .filter(|&&(ball, born, ..)| {
-                let (owner, subject) = entry(ball, born);
+            .filter(|ball| {
+                let (owner, subject) = entry(ball.body, ball.born);
                 hooks.rules().specific(owner, subject).is_decided()
             })
             .count();

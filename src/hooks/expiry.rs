@@ -98,12 +98,13 @@ impl RuleHooks {
     ///
     /// # Panics
     ///
-    /// If `dt` is negative or not a number.
+    /// If `dt` is negative, infinite or not a number.
     #[track_caller]
     pub fn set_timestep(&mut self, dt: Real) {
         assert!(
-            dt >= 0.0,
-            "RuleHooks::set_timestep({dt}): the time the coming steps take, zero or more seconds"
+            dt >= 0.0 && dt.is_finite(),
+            "RuleHooks::set_timestep({dt}): the time the coming steps take, a finite number of \
+             seconds, zero or more"
         );
         self.boundary.dt = dt;
     }

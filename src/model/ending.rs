@@ -86,15 +86,37 @@ impl Until {
     /// For `seconds` of simulated time (counted in whole steps, the nearest
     /// number of the world's `dt`), then until the sides are apart.
     ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks, Until};
+    ///
+    /// let mut world = PhysicsWorld::new(); // 60 Hz
+    /// let ball = world.insert_body(RigidBodyBuilder::dynamic());
+    /// world.insert_collider(ColliderBuilder::ball(0.5), Some(ball));
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(0.0, -5.0, 0.0)));
+    /// world.insert_collider(ColliderBuilder::cuboid(5.0, 0.5, 5.0), Some(ground));
+    /// let mut hooks = RuleHooks::default();
+    /// // 0.125 s is 7.5 steps of 1/60 s: a time on a half step holds that step.
+    /// hooks.rules_mut().set_specific_until(ball, ground, CollisionRule::NoPair, Until::seconds(0.125));
+    /// for _ in 0..8 {
+    ///     hooks.step(&mut world);
+    /// }
+    /// assert!(hooks.rules().specific(ball, ground).is_decided(), "it held the 8 steps");
+    /// hooks.step(&mut world);
+    /// assert_eq!(hooks.rules().specific(ball, ground), CollisionRule::Defer, "gone before the 9th");
+    /// ```
+    ///
     /// # Panics
     ///
-    /// If `seconds` is negative or not a number.
+    /// If `seconds` is negative, infinite or not a number (a rule without
+    /// an end is given with `set_specific`).
     #[must_use]
     #[track_caller]
     pub fn seconds(seconds: Real) -> Until {
         assert!(
-            seconds >= 0.0,
-            "Until::seconds({seconds}): a time to hold a rule must be zero or more seconds"
+            seconds >= 0.0 && seconds.is_finite(),
+            "Until::seconds({seconds}): a time to hold a rule must be a finite number of seconds, \
+             zero or more; a rule without an end is given with set_specific"
         );
         Until {
             count: Count::Seconds(seconds),
@@ -107,13 +129,13 @@ impl Until {
     ///
     /// # Panics
     ///
-    /// If `margin` is negative or not a number.
+    /// If `margin` is negative, infinite or not a number.
     #[must_use]
     #[track_caller]
     pub fn with_margin(self, margin: Real) -> Until {
         assert!(
-            margin >= 0.0,
-            "Until::with_margin({margin}): the margin must be zero or more (a distance)"
+            margin >= 0.0 && margin.is_finite(),
+            "Until::with_margin({margin}): the margin must be a finite distance, zero or more"
         );
         Until { margin, ..self }
     }
@@ -152,7 +174,10 @@ impl Until {
         !self.wait_apart
     }
 
-    /// The steps left, for a rule given for a number of steps.
+    /// The steps left, for a rule given for a number of steps. `Some(0)`
+    /// once the count has run out: the rule ends before the next step, or,
+    /// unless it ends [even if overlapping](Self::even_if_overlapping),
+    /// once its sides are apart.
     #[must_use]
     pub fn steps_left(&self) -> Option<u32> {
         match self.count {
@@ -161,7 +186,10 @@ impl Until {
         }
     }
 
-    /// The simulated time left, for a rule given for a time.
+    /// The simulated time left, for a rule given for a time. `Some(0.0)`
+    /// once less than half a step is left: the rule ends before the next
+    /// step, or, unless it ends [even if overlapping](Self::even_if_overlapping),
+    /// once its sides are apart.
     #[must_use]
     pub fn seconds_left(&self) -> Option<Real> {
         match self.count {
@@ -170,16 +198,16 @@ impl Until {
         }
     }
 
-    /// What the constructors and the count let through: a margin of zero
-    /// or more, a time left that is a number (the count may leave it a
-    /// little below zero). A save may hold anything.
+    /// What the constructors and the count let through: a finite margin of
+    /// zero or more, a finite time left (the count may leave it a little
+    /// below zero). A save may hold anything.
     #[cfg(feature = "serde")]
     pub(crate) fn is_valid(&self) -> bool {
         let time = match self.count {
-            Count::Seconds(left) => !left.is_nan(),
+            Count::Seconds(left) => left.is_finite(),
             _ => true,
         };
-        self.margin >= 0.0 && time
+        self.margin >= 0.0 && self.margin.is_finite() && time
     }
 
     /// Whether the count has come before a step of `dt`, `counted` after
@@ -461,7 +489,7 @@ impl CollisionRuleSet {
 
 #[cfg(test)]
 mod tests {
-    use super::{Countdown, Due, Until};
+    use super::{Countdown, Due, Real, Until};
 
     #[test]
     fn steps_hold_for_exactly_their_count() {
@@ -551,9 +579,20 @@ mod tests {
     }
 
     #[test]
-    #[should_panic(expected = "must be zero or more")]
+    #[should_panic(expected = "must be a finite number of seconds")]
     fn a_negative_time_is_refused() {
         let _ = Until::seconds(-1.0);
+    }
+
+    /// An infinite time or margin never ends, and a save cannot hold it
+    /// (JSON writes it as `null`, which does not load).
+    #[test]
+    fn an_infinite_time_or_margin_is_refused() {
+        let refused = |f: fn()| std::panic::catch_unwind(f).is_err();
+        assert!(refused(|| drop(Until::seconds(Real::INFINITY))), "an infinite time");
+        assert!(refused(|| drop(Until::seconds(Real::NAN))), "a time that is no number");
+        assert!(refused(|| drop(Until::apart().with_margin(Real::INFINITY))), "an infinite margin");
+        assert!(!refused(|| drop(Until::seconds(Real::MAX).with_margin(Real::MAX))), "a finite one");
     }
 
     #[test]

@@ -235,7 +235,7 @@ impl RuleHooks {
     /// `prepare` (which the next `prepare` reports). Written once per step:
     /// the other answers only read it.
     #[inline]
-    fn answering(&self) {
+    pub(super) fn answering(&self) {
         let seen = if self.boundary.prepared {
             &self.boundary.stepped
         } else if self.boundary.own_step {

@@ -75,6 +75,11 @@ impl RuleHooks {
         if surfaces.iter().all(Option::is_none) {
             return;
         }
+        // A one-way surface is the crate's answer too: a world whose only
+        // rules are one-way surfaces, stepped with the hooks but without
+        // their `prepare`, is caught as any other (`docs/semantics.md`,
+        // "Stepping without the hooks").
+        self.answering();
         let parts = made_of_parts(colliders, sides[0], sides[1]);
         let Some(rigid) = context.rigid_mut() else {
             return;

@@ -3,7 +3,7 @@
 //! one-call bare pipeline, and the calls a bare-pipeline user can forget.
 
 use super::rapier::prelude::*;
-use super::rules::{CollisionRule, ManifoldUpdate, RuleHooks, WorldRef};
+use super::rules::{CollisionRule, ManifoldUpdate, OneWay, RuleHooks, WorldRef};
 use super::{at, cuboid};
 
 use super::scenes::Events;
@@ -284,13 +284,22 @@ fn stepping_rapier_without_the_hooks_or_their_prepare_is_caught_at_the_next_step
     use super::{cube, slab};
     use CollisionRule::{NoContacts, NoResponse};
     type Misstep = fn(&mut PhysicsWorld, &RuleHooks);
-    // (what happened, the rule, the step, what the message says)
-    let cases: [(&str, CollisionRule, Misstep, &str); 3] = [
-        ("world.step(), NoContacts", NoContacts, |w, _| w.step(), "never `world.step()`"),
-        ("world.step(), NoResponse", NoResponse, |w, _| w.step(), "never `world.step()`"),
+    // (what happened, the rule (`None`: a one-way ground, the world's only
+    // rule), the step, what the message says)
+    let cases: [(&str, Option<CollisionRule>, Misstep, &str); 4] = [
+        ("world.step(), NoContacts", Some(NoContacts), |w, _| w.step(), "never `world.step()`"),
+        ("world.step(), NoResponse", Some(NoResponse), |w, _| w.step(), "never `world.step()`"),
         (
             "the hooks given to Rapier without prepare",
-            NoContacts,
+            Some(NoContacts),
+            |w, hooks| w.step_with_events(hooks, &()),
+            "without their `prepare`",
+        ),
+        // Found by trying one-way platforms from the docs alone: the one-way
+        // answers did not count as the hooks' answers.
+        (
+            "the hooks given to Rapier without prepare, a one-way ground",
+            None,
             |w, hooks| w.step_with_events(hooks, &()),
             "without their `prepare`",
         ),
@@ -303,10 +312,15 @@ fn stepping_rapier_without_the_hooks_or_their_prepare_is_caught_at_the_next_step
             let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 1.0)));
             world.insert_collider(cube(0.5), Some(ghost));
             let mut hooks = RuleHooks::default();
-            // Every collider hooked: the rule is the hook's alone, and
-            // Rapier asks the hook about the pair.
-            hooks.set_planner(false);
-            hooks.rules_mut().set_specific(ghost, ground, rule);
+            match rule {
+                Some(rule) => {
+                    // Every collider hooked: the rule is the hook's alone,
+                    // and Rapier asks the hook about the pair.
+                    hooks.set_planner(false);
+                    hooks.rules_mut().set_specific(ghost, ground, rule);
+                }
+                None => hooks.rules_mut().set_one_way(ground, Some(OneWay::new(at(0.0, 1.0)))),
+            }
             (world, hooks)
         };
         let (mut world, mut hooks) = build();

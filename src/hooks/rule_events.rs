@@ -175,7 +175,7 @@ impl RuleHooks {
     ///     events.extend(hooks.drain_rule_events());
     /// }
     /// // In the order of the handles' raw parts.
-/// let (c1, c2) = if g.into_raw_parts() < wall.into_raw_parts() { (g, wall) } else { (wall, g) };
+    /// let (c1, c2) = if g.into_raw_parts() < wall.into_raw_parts() { (g, wall) } else { (wall, g) };
     /// assert_eq!(events[0], RuleEvent::PairStarted { collider1: c1, collider2: c2, rule: CollisionRule::NoResponse });
     /// assert_eq!(events[1], RuleEvent::RuleChanged {
     ///     collider1: c1, collider2: c2,

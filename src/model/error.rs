@@ -33,10 +33,10 @@ pub enum RuleError {
     },
     /// The parent is already a descendant of the child.
     #[error(
-        "making {} the parent of {} would close a cycle: it is already below it; \
-         call remove_parent on it first",
-        Named(Node::Body(*parent)),
-        Named(Node::Body(*child))
+        "making {parent} the parent of {child} would close a cycle: {parent} is already below \
+         {child}; call remove_parent on {parent} (or a body between them) first",
+        parent = Named(Node::Body(*parent)),
+        child = Named(Node::Body(*child))
     )]
     Cycle {
         /// The body that was to get a parent.

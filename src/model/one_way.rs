@@ -52,7 +52,7 @@ impl OneWay {
     ///
     /// # Panics
     ///
-    /// If `normal` is zero or not finite: it names no side.
+    /// If `normal` is not finite or shorter than `1e-6`: it names no side.
     #[must_use]
     #[track_caller]
     pub fn new(normal: Vector) -> OneWay {

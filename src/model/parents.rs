@@ -8,9 +8,13 @@ use super::super::{CollisionRuleSet, Node, RuleError};
 /// The parent map.
 impl CollisionRuleSet {
     /// Makes `parent` the parent of `child` in the crate's parent map,
-    /// replacing any earlier parent. A handle of a removed object
-    /// ([`RuleError::Removed`]), a body as its own parent, or a parent that
-    /// already lies below `child` is refused and changes nothing.
+    /// replacing any earlier parent. A body as its own parent, a parent
+    /// that already lies below `child`, or a handle of an object the rule
+    /// set knows to be removed ([`RuleError::Removed`]) is refused and
+    /// changes nothing. The rule set learns of a removal when the hooks
+    /// step: until then a body just removed through Rapier is taken, and
+    /// its link dropped at the next step (`docs/semantics.md`, "Handles of
+    /// removed objects"; [`validate`](Self::validate) reports it before).
     ///
     /// ```
     /// use rapier3d::prelude::*;

@@ -62,8 +62,8 @@ fn errors_display_lowercase_and_name_the_handles() {
     let text = error.to_string();
     assert_eq!(
         text,
-        "making body 1 the parent of body 0 would close a cycle: it is already below it; \
-         call remove_parent on it first"
+        "making body 1 the parent of body 0 would close a cycle: body 1 is already below \
+         body 0; call remove_parent on body 1 (or a body between them) first"
     );
     assert!(format!("{error:?}").contains(&format!("{:?}", b[0])), "Debug keeps the handles");
     let removed = RuleError::Removed {

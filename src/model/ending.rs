@@ -588,11 +588,11 @@ mod tests {
     /// (JSON writes it as `null`, which does not load).
     #[test]
     fn an_infinite_time_or_margin_is_refused() {
-        let refused = |f: fn()| std::panic::catch_unwind(f).is_err();
-        assert!(refused(|| drop(Until::seconds(Real::INFINITY))), "an infinite time");
-        assert!(refused(|| drop(Until::seconds(Real::NAN))), "a time that is no number");
-        assert!(refused(|| drop(Until::apart().with_margin(Real::INFINITY))), "an infinite margin");
-        assert!(!refused(|| drop(Until::seconds(Real::MAX).with_margin(Real::MAX))), "a finite one");
+        let refused = |make: fn() -> Until| std::panic::catch_unwind(make).is_err();
+        assert!(refused(|| Until::seconds(Real::INFINITY)), "an infinite time");
+        assert!(refused(|| Until::seconds(Real::NAN)), "a time that is no number");
+        assert!(refused(|| Until::apart().with_margin(Real::INFINITY)), "an infinite margin");
+        assert!(!refused(|| Until::seconds(Real::MAX).with_margin(Real::MAX)), "a finite one");
     }
 
     #[test]

@@ -55,6 +55,13 @@ impl CollisionRuleSet {
             for id in namers.iter() {
                 self.records.get_mut(id).specific.remove(&node);
                 self.touch_users(id, node);
+                // A record left empty that one node alone uses is freed, as
+                // removing its last entry by hand frees it
+                // (`docs/semantics.md`, "Clearing").
+                let record = self.records.get(id);
+                if let (1, true, Some(user)) = (record.users, record.is_empty(), record.only_user) {
+                    self.detach(user);
+                }
             }
         }
         if let Node::Body(body) = node {
@@ -166,5 +173,40 @@ mod tests {
         assert_eq!(rules.specific(b, z), CollisionRule::NoPair);
         rules.remove_node(z);
         assert_eq!(touched(&mut rules), vec![Node::Body(b)], "b's record holds no entry now");
+    }
+
+    /// Found by trying soft debris as a new user: a node whose one entry
+    /// named a removed object kept an empty record, listed among the nodes,
+    /// where removing the entry by hand frees it. A record that keeps other
+    /// rules, or other users, stays.
+    #[test]
+    fn a_record_left_empty_by_a_removal_is_freed_as_by_hand() {
+        let mut bodies = RigidBodySet::new();
+        let mut body = || bodies.insert(RigidBodyBuilder::dynamic());
+        let (player, debris, grouped, shared, other) = (body(), body(), body(), body(), body());
+        let mut rules = CollisionRuleSet::default();
+        let group = rules.create_group();
+        rules.set_specific(player, debris, CollisionRule::NoResponse);
+        rules.set_specific(grouped, debris, CollisionRule::NoPair);
+        rules.set_group(grouped, Some(group));
+        rules.share_rules(shared, other);
+        rules.set_specific(shared, debris, CollisionRule::NoPair);
+        let mut by_hand = rules.clone();
+        rules.remove_node(debris);
+        for holder in [player, grouped, shared] {
+            by_hand.remove_specific(holder, debris);
+        }
+        by_hand.remove_node(debris);
+        let nodes = |rules: &CollisionRuleSet| {
+            let mut nodes: Vec<Node> = rules.nodes().collect();
+            nodes.sort_unstable();
+            nodes
+        };
+        assert_eq!(nodes(&rules), nodes(&by_hand), "the same nodes as removing the entries by hand");
+        assert!(!nodes(&rules).contains(&Node::Body(player)), "the player holds nothing: {:?}", nodes(&rules));
+        assert_eq!(rules.group(grouped), Some(group), "a record with a group stays");
+        assert!(nodes(&rules).contains(&Node::Body(shared)), "a shared record stays with its users");
+        assert_eq!(rules.record_count(), by_hand.record_count());
+        assert_eq!(rules.validate(&bodies, &ColliderSet::new()), Ok(()));
     }
 }

@@ -218,8 +218,19 @@ impl Model {
             self.forgotten.push(node);
         }
         self.owner.remove(&node);
+        // The nodes whose records named it: a record left empty that one
+        // of them alone uses is freed, as by hand.
+        let namers: Vec<Node> = self
+            .owner
+            .iter()
+            .filter(|&(_, &i)| self.records[i].specific.contains_key(&node))
+            .map(|(&n, _)| n)
+            .collect();
         for record in &mut self.records {
             record.specific.remove(&node);
+        }
+        for namer in namers {
+            self.tidy(namer);
         }
         if let Node::Body(body) = node {
             self.parents.remove(&body);

@@ -296,15 +296,22 @@ impl CollisionRuleSet {
         }
     }
 
-    /// Drops `node`'s record if it holds nothing and nobody else uses it,
-    /// so that a node whose rules were all cleared costs nothing.
+    /// Logs an edit of `node`'s rules and drops its record if it holds
+    /// nothing and nobody else uses it, so that a node whose rules were all
+    /// cleared costs nothing.
     pub(super) fn tidy(&mut self, node: Node) {
         self.touch(node);
         if let Some(id) = self.record_id(node) {
-            let record = self.records.get(id);
-            if record.users == 1 && record.is_empty() {
-                self.detach(node);
-            }
+            self.free_if_empty(id);
+        }
+    }
+
+    /// Drops record `id` if it holds nothing and one node alone uses it
+    /// (`docs/semantics.md`, "Clearing").
+    pub(super) fn free_if_empty(&mut self, id: RecordId) {
+        let record = self.records.get(id);
+        if let (1, true, Some(user)) = (record.users, record.is_empty(), record.only_user) {
+            self.detach(user);
         }
     }
 

@@ -55,13 +55,9 @@ impl CollisionRuleSet {
             for id in namers.iter() {
                 self.records.get_mut(id).specific.remove(&node);
                 self.touch_users(id, node);
-                // A record left empty that one node alone uses is freed, as
-                // removing its last entry by hand frees it
-                // (`docs/semantics.md`, "Clearing").
-                let record = self.records.get(id);
-                if let (1, true, Some(user)) = (record.users, record.is_empty(), record.only_user) {
-                    self.detach(user);
-                }
+                // Freed if left empty, as removing its last entry by hand
+                // frees it.
+                self.free_if_empty(id);
             }
         }
         if let Node::Body(body) = node {

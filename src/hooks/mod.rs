@@ -227,7 +227,8 @@ struct Boundary {
     census: Census,
     /// A hooked pair the hook answered "no contacts" or "no response" in
     /// the last step, with its rule: if Rapier's graph shows another answer
-    /// before the next step, Rapier stepped without the hooks.
+    /// before the next step, or after a step that asked the hooks nothing,
+    /// Rapier stepped without the hooks.
     witness: Option<(PairKey, CollisionRule)>,
     /// Whether stepping without the hooks was reported (once).
     reported_unhooked: bool,

@@ -3,7 +3,8 @@
 
 use super::super::rapier::prelude::*;
 
-use super::RuleHooks;
+use super::{PairKey, RuleHooks};
+use super::super::CollisionRule;
 use super::answer::answer_overridden;
 
 /// The witness.
@@ -11,20 +12,53 @@ impl RuleHooks {
     /// Whether Rapier stepped without these hooks since their last step: the
     /// witness pair (one hooked pair the hook answered "no contacts" or "no
     /// response") shows another answer in Rapier's graph. One look-up per
-    /// step (`docs/semantics.md`, "Stepping without the hooks").
+    /// step (`docs/semantics.md`, "Stepping without the hooks"). The witness
+    /// stays for [`check_witness_after`](Self::check_witness_after).
     pub(super) fn check_witness(&mut self, narrow_phase: &NarrowPhase) {
-        let Some((key, rule)) = self.boundary.witness.take() else {
+        let Some((key, rule)) = self.boundary.witness else {
             return;
         };
-        let (a, b) = key.colliders();
-        let overridden = narrow_phase
-            .contact_pair(a, b)
-            .is_some_and(|pair| answer_overridden(rule, pair));
-        if overridden {
+        if witness_overridden(narrow_phase, key, rule) {
+            let (a, b) = key.colliders();
             self.report_unhooked(&format!(
                 "Rapier stepped without the RuleHooks since their last step: the {rule:?} pair \
                  of colliders {a:?} and {b:?} was given contacts and impulses the rules refuse, \
                  and every rule the hook decides was dropped for that step"
+            ));
+        }
+    }
+
+    /// After a step in which Rapier asked the hook nothing: whether that
+    /// step was taken without the hooks, between their `prepare` and
+    /// `after_step` (`world.step()` where the hooks should have been
+    /// passed). The witness of the last step, still hooked with the same
+    /// rule and not answered since, shows another answer in Rapier's graph.
+    /// A step with the hooks that asks nothing (the bodies sleep) leaves
+    /// the pair's contacts as the hook left them. Takes the witness.
+    pub(super) fn check_witness_after(&mut self, narrow_phase: &NarrowPhase, colliders: &ColliderSet) {
+        let Some((key, rule)) = self.boundary.witness.take() else {
+            return;
+        };
+        if *self.boundary.stepped.get_mut() {
+            return;
+        }
+        let (a, b) = key.colliders();
+        let plan = &self.planned.plan;
+        let hooked = |c: ColliderHandle| plan.colliders.get(c).is_some_and(|p| p.hooked());
+        let same = self
+            .pairs
+            .get(key)
+            .is_some_and(|state| state.rule() == rule && !state.answered_in(self.boundary.step));
+        if same
+            && colliders.contains(a)
+            && colliders.contains(b)
+            && (hooked(a) || hooked(b))
+            && witness_overridden(narrow_phase, key, rule)
+        {
+            self.report_unhooked(&format!(
+                "Rapier stepped without the RuleHooks between their `prepare` and `after_step`: \
+                 the {rule:?} pair of colliders {a:?} and {b:?} was given contacts and impulses \
+                 the rules refuse, and every rule the hook decides was dropped for that step"
             ));
         }
     }
@@ -61,4 +95,13 @@ impl RuleHooks {
             log::warn!("{message}");
         }
     }
+}
+
+/// Whether Rapier's graph shows the witness pair with another answer than
+/// the hook's `rule`.
+fn witness_overridden(narrow_phase: &NarrowPhase, key: PairKey, rule: CollisionRule) -> bool {
+    let (a, b) = key.colliders();
+    narrow_phase
+        .contact_pair(a, b)
+        .is_some_and(|pair| answer_overridden(rule, pair))
 }

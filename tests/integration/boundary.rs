@@ -270,6 +270,100 @@ fn a_forgotten_call_fails_loudly_and_names_it() {
     }
 }
 
+/// Rapier stepping the world without the hooks inside their own bracket:
+/// `prepare`, `freeze_manifolds`, `wake_edited`, then `world.step()` where
+/// the hooks should have been passed, then `after_step`. Found by trying
+/// the bare-pipeline calls from the docs alone: `after_step` forgot the
+/// witness, since nothing was answered, and the next `freeze_manifolds`
+/// had nothing to look up; the ghost then rested on the floor while
+/// `pair_rule` said `NoContacts`. A debug build panics at that
+/// `after_step`, naming what happened and the fix; a release build warns
+/// once and says so in that step's stats. A ghost held still in the floor
+/// falls asleep, and a step with the hooks then asks them nothing: that
+/// step is not mistaken for one without them (`docs/semantics.md`,
+/// "Stepping without the hooks").
+#[test]
+fn stepping_rapier_without_the_hooks_inside_their_bracket_is_caught_at_after_step() {
+    use super::{cube, slab};
+    use CollisionRule::{NoContacts, NoResponse};
+    /// One bracket of the bare-pipeline calls; `hooked`: the hooks are
+    /// given to Rapier's step.
+    fn bracket(world: &mut PhysicsWorld, hooks: &mut RuleHooks, hooked: bool) {
+        hooks.prepare(&world.bodies, &mut world.colliders);
+        hooks.freeze_manifolds(&world.narrow_phase);
+        hooks.wake_edited(&mut world.islands, &mut world.bodies);
+        if hooked {
+            world.step_with_events(&*hooks, &());
+        } else {
+            world.step();
+        }
+        hooks.after_step(&world.narrow_phase, &world.bodies, &world.colliders);
+    }
+    // The ghost sunk into the floor (`held`: without gravity, so that it
+    // falls asleep there), and its hooks deciding `rule` with every
+    // collider hooked.
+    let build = |rule: CollisionRule, held: bool| {
+        let mut world = PhysicsWorld::new();
+        let ground = world.insert_body(RigidBodyBuilder::fixed());
+        world.insert_collider(slab(10.0, 0.5), Some(ground));
+        let ghost = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .translation(at(0.0, 0.9))
+                .gravity_scale(if held { 0.0 } else { 1.0 }),
+        );
+        world.insert_collider(cube(0.5), Some(ghost));
+        let mut hooks = RuleHooks::default();
+        hooks.set_planner(false);
+        hooks.rules_mut().set_specific(ghost, ground, rule);
+        (world, hooks, ghost)
+    };
+
+    // With the hooks throughout, until the held ghost sleeps and long after.
+    let (mut world, mut hooks, ghost) = build(NoContacts, true);
+    for step in 0..300 {
+        bracket(&mut world, &mut hooks, true);
+        assert!(
+            !hooks.stats().stepped_without_hooks,
+            "step {step}: stepped with the hooks, said without: {:?}",
+            hooks.stats()
+        );
+    }
+    assert!(
+        world.bodies[ghost].is_sleeping(),
+        "the held ghost fell asleep, so that the last steps asked the hooks nothing"
+    );
+
+    for rule in [NoContacts, NoResponse] {
+        let (mut world, mut hooks, _) = build(rule, false);
+        for _ in 0..3 {
+            bracket(&mut world, &mut hooks, true);
+        }
+        if !cfg!(debug_assertions) {
+            bracket(&mut world, &mut hooks, false);
+            assert!(
+                hooks.stats().stepped_without_hooks,
+                "{rule:?}: went unnoticed: {:?}",
+                hooks.stats()
+            );
+            bracket(&mut world, &mut hooks, true);
+            assert!(!hooks.stats().stepped_without_hooks, "{rule:?}: said for its step only");
+            continue;
+        }
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            bracket(&mut world, &mut hooks, false);
+        }));
+        let message = outcome
+            .err()
+            .and_then(|panic| panic.downcast::<String>().ok())
+            .unwrap_or_else(|| panic!("{rule:?}: went unnoticed"));
+        assert!(
+            message.contains("between their `prepare` and `after_step`")
+                && message.contains("never `world.step()`"),
+            "{rule:?}: the message names what happened and the fix: {message}"
+        );
+    }
+}
+
 /// Rapier stepping the world between two steps of the hooks: without them
 /// (`world.step()`: every rule the hook decides is dropped for that step),
 /// or with them but without their `prepare` (`world.step_with_events(&hooks,

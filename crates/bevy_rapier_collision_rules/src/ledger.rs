@@ -100,6 +100,10 @@ pub(crate) struct Ledger {
     /// last step, or planned with bits from the project's room: changes of
     /// the project's settings must reach them.
     pub(crate) hooks_reach: bool,
+    /// A system that takes `CollisionRulesHooks` was initialized (see
+    /// [`HooksProbe`](super::misuse::HooksProbe)): bevy_rapier steps with
+    /// them somewhere.
+    pub(crate) hooks_in_use: bool,
 }
 
 impl Ledger {

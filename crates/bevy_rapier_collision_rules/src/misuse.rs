@@ -11,28 +11,26 @@ use bevy::prelude::*;
 
 use super::ledger::Ledger;
 
-/// Present once a system whose parameters include `CollisionRulesHooks`
-/// has been initialized: in practice bevy_rapier's step, whose hooks are
-/// the only place the parameter is meant for.
-#[derive(Resource)]
-pub(crate) struct HooksInUse;
-
 /// A `Local` of `CollisionRulesHooks`: Bevy makes it from the world when it
 /// initializes the system that takes the hooks, which is when bevy_rapier's
 /// step is set up (at the first run of its schedule, after every plugin was
 /// built). That is the one moment the hooks can see the world: they note
-/// that they are in use, and warn if `CollisionRulesPlugin` is missing.
+/// in the plugin's [`Ledger`] that they are in use, or warn that
+/// `CollisionRulesPlugin` is missing.
+///
+/// It inserts nothing: Bevy keeps each resource in an entity of its own,
+/// and one spawned here, between the project's spawns, changes the order in
+/// which bevy_rapier gives its colliders their handles, and with it the
+/// physics of a world without rules (`docs/bevy.md`, "Without rules").
 #[doc(hidden)]
 pub struct HooksProbe;
 
 impl FromWorld for HooksProbe {
     fn from_world(world: &mut World) -> Self {
-        if !world.contains_resource::<HooksInUse>() {
-            world.insert_resource(HooksInUse);
-            // The plugin's own book, inserted when the plugin is built.
-            if !world.contains_resource::<Ledger>() {
-                log::warn!("{}", without_plugin());
-            }
+        match world.get_resource_mut::<Ledger>() {
+            Some(mut ledger) => ledger.bypass_change_detection().hooks_in_use = true,
+            // Once per system that takes the hooks: bevy_rapier's step.
+            None => log::warn!("{}", without_plugin()),
         }
         HooksProbe
     }
@@ -68,13 +66,11 @@ pub(crate) fn without_hooks(schedule: Interned<dyn ScheduleLabel>) -> String {
 
 /// Runs once, at the first run of the plugin's systems: by then Bevy has
 /// initialized every system of the schedule, so if bevy_rapier steps there
-/// with hooks that include `CollisionRulesHooks`, [`HooksInUse`] is
-/// present.
-pub(crate) fn check_hooks(
-    schedule: Interned<dyn ScheduleLabel>,
-) -> impl FnMut(Option<Res<HooksInUse>>) {
-    move |in_use| {
-        if in_use.is_none() {
+/// with hooks that include `CollisionRulesHooks`, the [`HooksProbe`] has
+/// noted them in the [`Ledger`].
+pub(crate) fn check_hooks(schedule: Interned<dyn ScheduleLabel>) -> impl FnMut(Res<Ledger>) {
+    move |ledger| {
+        if !ledger.hooks_in_use {
             log::warn!("{}", without_hooks(schedule));
         }
     }

@@ -461,6 +461,54 @@ impl RuleHooks {
     /// // Sensors aside, nothing responds to anything: a world of ghosts.
     /// hooks.set_calculator(|ctx| ctx.default_rule().most_restrictive(CollisionRule::NoResponse));
     /// ```
+    ///
+    /// The calculator answers when a pair's rule is calculated: when Rapier
+    /// first finds the pair, and under the default
+    /// [`OnChange`](RecalculationPolicy::OnChange) policy when an edit or
+    /// [`force_recalculation`](Self::force_recalculation) reaches it. A
+    /// calculator that reads state of its own (a flag, a timer, a score) is
+    /// not asked again when that state changes: call `force_recalculation`
+    /// on the nodes whose pairs the change reaches, or, for state that
+    /// changes every step, set [`EveryStep`](RecalculationPolicy::EveryStep).
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use std::sync::atomic::{AtomicBool, Ordering};
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// world.gravity = Vector::ZERO;
+    /// // Two team mates walking through each other.
+    /// let mate = |world: &mut PhysicsWorld, x: f32, vx: f32| {
+    ///     let body = world.insert_body(
+    ///         RigidBodyBuilder::dynamic().translation(Vector::new(x, 0.0, 0.0)).linvel(Vector::new(vx, 0.0, 0.0)),
+    ///     );
+    ///     (body, world.insert_collider(ColliderBuilder::ball(0.5), Some(body)))
+    /// };
+    /// let ((a, ca), (b, cb)) = (mate(&mut world, -0.3, 1.0), mate(&mut world, 0.3, -1.0));
+    /// let friendly_fire = Arc::new(AtomicBool::new(false));
+    /// let mut hooks = RuleHooks::default();
+    /// let flag = friendly_fire.clone();
+    /// hooks.set_calculator(move |_| {
+    ///     if flag.load(Ordering::Relaxed) { CollisionRule::Normal } else { CollisionRule::NoResponse }
+    /// });
+    /// hooks.step(&mut world);
+    /// assert_eq!(hooks.pair_rule(&world, ca, cb), Some(CollisionRule::NoResponse));
+    /// // The flag alone reaches no live pair: the calculator is asked again
+    /// // for the pairs of the nodes forced.
+    /// friendly_fire.store(true, Ordering::Relaxed);
+    /// hooks.step(&mut world);
+    /// assert_eq!(hooks.pair_rule(&world, ca, cb), Some(CollisionRule::NoResponse));
+    /// hooks.force_recalculation(a);
+    /// hooks.step(&mut world);
+    /// assert_eq!(hooks.pair_rule(&world, ca, cb), Some(CollisionRule::Normal));
+    /// for _ in 0..60 {
+    ///     hooks.step(&mut world);
+    /// }
+    /// // The team mates pushed each other back instead of walking through.
+    /// assert!(world.bodies[a].translation().x < world.bodies[b].translation().x);
+    /// ```
     pub fn set_calculator(
         &mut self,
         calculator: impl Fn(&CalculatorContext<'_>) -> CollisionRule + Send + Sync + 'static,

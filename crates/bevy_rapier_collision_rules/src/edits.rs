@@ -8,8 +8,8 @@ use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy_rapier::plugin::context::RapierRigidBodySet;
 use bevy_rapier::prelude::{
-    RapierColliderHandle, RapierContextEntityLink, RapierRigidBodyHandle, RapierSoftBodyHandle,
-    SoftBodyTearEvent,
+    Collider, RapierColliderHandle, RapierContextEntityLink, RapierRigidBodyHandle,
+    RapierSoftBodyHandle, RigidBody, SoftBody, SoftBodyTearEvent,
 };
 
 use super::components::SpecificEntry;
@@ -24,6 +24,10 @@ type Handles = (
     Option<&'static RapierContextEntityLink>,
 );
 
+/// Entities with a rigid body, a collider or a soft body, made into Rapier
+/// objects or not yet.
+type Physical = Or<(With<RigidBody>, With<Collider>, With<SoftBody>)>;
+
 /// Every entity's physics object, if it has one (its rigid body, soft body,
 /// collider, context), and the contexts' body sets, where a soft body's
 /// root body is found.
@@ -31,6 +35,8 @@ type Handles = (
 pub(crate) struct Objects<'w, 's> {
     handles: Query<'w, 's, Handles>,
     sets: Query<'w, 's, (Entity, &'static RapierRigidBodySet)>,
+    /// Entities that have, or will have, a physics object.
+    physical: Query<'w, 's, (), Physical>,
 }
 
 impl Objects<'_, '_> {
@@ -403,6 +409,9 @@ fn apply(
         None => None,
     };
     let Some((place, holder)) = placed.filter(|_| wants) else {
+        if wants && placed.is_none() && !objects.physical.contains(entity) {
+            ledger.warn_bare(entity);
+        }
         return;
     };
     let Ok(mut rules) = contexts.get_mut(place.0) else {
@@ -411,6 +420,16 @@ fn apply(
         return;
     };
     let context = place.0;
+    if let Some(RuleGroup(g)) = group {
+        let count = rules.rules().group_count();
+        assert!(
+            g.id() < count,
+            "{entity}'s RuleGroup({g:?}) was not created by the rule table of its physics \
+             context {context} ({count} groups exist there). Fix: create the group with the \
+             table that context uses (the RuleTable resource, or the context's own \
+             ContextRuleTable) and give it only to entities of that context."
+        );
+    }
     let mut entries = Vec::new();
     for SpecificEntry {
         other: target,

@@ -104,9 +104,21 @@ pub(crate) struct Ledger {
     /// [`HooksProbe`](super::misuse::HooksProbe)): bevy_rapier steps with
     /// them somewhere.
     pub(crate) hooks_in_use: bool,
+    /// A rule component on an entity with no physics object was warned
+    /// about (once per app).
+    warned_bare: bool,
 }
 
 impl Ledger {
+    /// Warns, once per app, that `entity` carries a rule component but has
+    /// no rigid body, collider or soft body, so that its rules reach
+    /// nothing (`docs/bevy.md`, "How components map to the rules").
+    pub(crate) fn warn_bare(&mut self, entity: Entity) {
+        if !std::mem::replace(&mut self.warned_bare, true) {
+            log::warn!("{}", super::misuse::bare_carrier(entity));
+        }
+    }
+
     /// Whether the edits have nothing to follow or apply this frame: no
     /// rule component in the world, nothing held in the book or noted by
     /// the observers, and no context whose hooks read the project's

@@ -64,6 +64,18 @@ pub(crate) fn without_hooks(schedule: Interned<dyn ScheduleLabel>) -> String {
     )
 }
 
+/// The warning for a rule component on an entity without a physics object.
+pub(crate) fn bare_carrier(entity: Entity) -> String {
+    format!(
+        "{entity} has a rule component (RuleGroup, PersonalRule, SpecificRules or \
+         OneWaySurface) but no RigidBody, Collider or SoftBody: its rules reach nothing, not even \
+         its children, until it has one (later entities like it are not reported). Rules pass \
+         down from a rigid body to its colliders and, through ChildOf, to the rigid bodies below \
+         it; a plain entity in between passes nothing. Fix: put the component on the rigid body \
+         entity (or on each collider)."
+    )
+}
+
 /// Runs once, at the first run of the plugin's systems: by then Bevy has
 /// initialized every system of the schedule, so if bevy_rapier steps there
 /// with hooks that include `CollisionRulesHooks`, the [`HooksProbe`] has

@@ -256,3 +256,68 @@ fn whole_set_ups_and_plain_bevy_rapier_do_not_warn() {
     let warnings = warnings();
     assert!(warnings.is_empty(), "{warnings:#?}");
 }
+
+/// A rule component on a plain entity (no rigid body, collider or soft
+/// body) whose Bevy child is the body: the rules reach nothing, which the
+/// components table says, and a warning, once, names the entity and the
+/// fix. Found by trying the 2D adapter from its docs alone: the child
+/// rested on the floor in silence. The same rules on the body itself warn
+/// nothing and hold.
+#[test]
+fn rules_on_an_entity_without_a_physics_object_warn_once_naming_it() {
+    let _turn = turn();
+    let physics = (
+        RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
+        CollisionRulesPlugin::default(),
+    );
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, TransformPlugin))
+        .add_plugins(physics)
+        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
+            1.0 / 60.0,
+        )));
+    app.finish();
+    app.cleanup();
+    let world = app.world_mut();
+    world.spawn((
+        Transform::from_xyz(0.0, -0.5, 0.0),
+        dimension::cuboid(5.0, 0.5, 5.0),
+    ));
+    let ball = |x: f32| {
+        (
+            Transform::from_xyz(x, 0.5, 0.0),
+            RigidBody::Dynamic,
+            Collider::ball(0.25),
+        )
+    };
+    // Two plain parents, each with a ball under it, and a ball with its
+    // rule on itself.
+    let parents: Vec<Entity> = [-2.0, 2.0]
+        .map(|x| {
+            let parent = world
+                .spawn((Transform::default(), PersonalRule(NoResponse)))
+                .id();
+            world.spawn((ball(x), ChildOf(parent)));
+            parent
+        })
+        .into();
+    let own = world.spawn((ball(0.0), PersonalRule(NoResponse))).id();
+    for _ in 0..60 {
+        app.update();
+    }
+    let warnings = warnings();
+    let y = app.world().get::<Transform>(own).unwrap().translation.y;
+    println!("the ball with its own rule at y = {y}, warnings: {warnings:#?}");
+    assert_eq!(warnings.len(), 1, "once for the two parents: {warnings:#?}");
+    assert!(
+        parents.iter().any(|p| warnings[0].contains(&p.to_string()))
+            && warnings[0].contains("no RigidBody, Collider or SoftBody")
+            && warnings[0].contains("Fix: put the component on the rigid body entity"),
+        "names one of the parents ({parents:?}) and the fix: {}",
+        warnings[0]
+    );
+    assert!(
+        y < -1.0,
+        "the rule on the ball itself holds: it fell through, y = {y}"
+    );
+}

@@ -71,3 +71,33 @@ fn each_context_has_its_own_rules_and_table() {
         sim.y(g3)
     );
 }
+
+/// A group created with another table than the one its entity's context
+/// uses is a caller bug: the frame that applies it panics, naming the
+/// entity, its context and the fix. Found by trying the 2D adapter from its
+/// docs alone: the core's message named neither.
+#[test]
+fn a_group_from_another_table_panics_naming_the_entity_and_the_fix() {
+    let mut sim = Sim::new();
+    let context = sim.context();
+    let mut other = RuleTable::default();
+    let foreign = [(); 3].map(|_| other.create_group())[2];
+    let ghost = sim.spawn((ball(0.0, 1.0), RuleGroup(foreign)));
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| sim.run(1)));
+    let message = outcome
+        .err()
+        .and_then(|panic| {
+            panic
+                .downcast::<String>()
+                .map(|m| *m)
+                .or_else(|panic| panic.downcast::<&str>().map(|m| m.to_string()))
+                .ok()
+        })
+        .expect("a panic with a message");
+    assert!(
+        message.contains(&ghost.to_string())
+            && message.contains(&context.to_string())
+            && message.contains("Fix: create the group with the table that context uses"),
+        "names the entity ({ghost}), its context ({context}) and the fix: {message}"
+    );
+}

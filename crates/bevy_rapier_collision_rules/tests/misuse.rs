@@ -75,10 +75,8 @@ fn warnings() -> Vec<String> {
         .clone()
 }
 
-/// A headless app with `physics`, stepped by hand for 30 frames of 1/60 s,
-/// a ball over a floor whose rule with it is `NoContacts` (a rule only the
-/// hooks can keep). Returns the ball's height.
-fn run<M>(physics: impl Plugins<M>) -> f32 {
+/// A headless app with `physics`, to be stepped by hand in frames of 1/60 s.
+fn headless<M>(physics: impl Plugins<M>) -> App {
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, TransformPlugin))
         .add_plugins(physics)
@@ -87,6 +85,14 @@ fn run<M>(physics: impl Plugins<M>) -> f32 {
         )));
     app.finish();
     app.cleanup();
+    app
+}
+
+/// A headless app with `physics`, stepped by hand for 60 frames of 1/60 s,
+/// a ball over a floor whose rule with it is `NoContacts` (a rule only the
+/// hooks can keep). Returns the ball's height.
+fn run<M>(physics: impl Plugins<M>) -> f32 {
+    let mut app = headless(physics);
     let floor = app
         .world_mut()
         .spawn((
@@ -266,18 +272,10 @@ fn whole_set_ups_and_plain_bevy_rapier_do_not_warn() {
 #[test]
 fn rules_on_an_entity_without_a_physics_object_warn_once_naming_it() {
     let _turn = turn();
-    let physics = (
+    let mut app = headless((
         RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
         CollisionRulesPlugin::default(),
-    );
-    let mut app = App::new();
-    app.add_plugins((MinimalPlugins, TransformPlugin))
-        .add_plugins(physics)
-        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
-            1.0 / 60.0,
-        )));
-    app.finish();
-    app.cleanup();
+    ));
     let world = app.world_mut();
     world.spawn((
         Transform::from_xyz(0.0, -0.5, 0.0),

@@ -43,6 +43,7 @@ macro_rules! dimension {
         #[cfg(feature = "serde")]
         pub use model::{LoadError, SavedRuleSet};
         pub use resolve::{Explanation, Stage};
+        pub use world::ProjectSettings;
     };
 }
 

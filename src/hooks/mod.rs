@@ -46,7 +46,7 @@ use super::rapier::prelude::*;
 
 use super::model::HandleMap;
 use super::planner::Plan;
-use super::world::{Census, Mark, Settings, Written};
+use super::world::{Census, Mark, ProjectSettings, Settings, Written};
 use super::{CollisionRule, CollisionRuleSet, Node};
 
 pub use pair_state::ManifoldUpdate;
@@ -669,6 +669,51 @@ impl RuleHooks {
         }
         self.planned.written = HandleMap::default();
         self.queued.replan = Some(PlanCause::ProjectSettings);
+    }
+
+    /// The project's own settings of `collider`: its collision and solver
+    /// groups, collision types and hook bits as the project set them,
+    /// without what the rules wrote (`None` for a handle of no collider).
+    /// While the rules reach a collider, Rapier's getters show the two
+    /// combined: a project that changes one of its settings by reading it
+    /// and writing it back reads it here, since a value read from the
+    /// collider carries the rules' bits, which the crate then takes as the
+    /// project's own (`docs/semantics.md`, "The project's own settings").
+    ///
+    /// ```
+    /// use rapier3d::prelude::*;
+    /// use rapier_collision_rules::{CollisionRule, RuleHooks};
+    ///
+    /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed());
+    /// let floor = world.insert_collider(ColliderBuilder::cuboid(10.0, 0.5, 10.0), Some(ground));
+    /// let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(Vector::new(0.0, 2.0, 0.0)));
+    /// world.insert_collider(ColliderBuilder::ball(0.5), Some(ghost));
+    /// let mut hooks = RuleHooks::default();
+    /// hooks.rules_mut().set_specific(ghost, ground, CollisionRule::NoPair);
+    /// hooks.step(&mut world);
+    /// // The project takes a layer out of the floor's memberships.
+    /// let own = hooks.project_settings(&world.colliders, floor).unwrap().collision_groups;
+    /// world.colliders[floor].set_collision_groups(InteractionGroups::new(
+    ///     own.memberships - Group::GROUP_5,
+    ///     own.filter,
+    ///     own.test_mode,
+    /// ));
+    /// hooks.step(&mut world);
+    /// hooks.rules_mut().remove_specific(ghost, ground);
+    /// hooks.step(&mut world);
+    /// // The rule gone, the floor has the project's groups, and only those.
+    /// let groups = world.colliders[floor].collision_groups();
+    /// assert_eq!((groups.memberships, groups.filter), (Group::ALL - Group::GROUP_5, Group::ALL));
+    /// ```
+    #[must_use]
+    pub fn project_settings(
+        &self,
+        colliders: &ColliderSet,
+        collider: ColliderHandle,
+    ) -> Option<ProjectSettings> {
+        let settings = self.own_settings(collider, colliders.get(collider)?);
+        Some(settings.into())
     }
 
     /// Starts over on a world put in place of the one these hooks stepped,

@@ -21,5 +21,6 @@ pub(crate) use graph::{Census, Joints, census, filters_pass, pair_exists, partne
 pub(crate) use kinds::body_types;
 pub(crate) use mark::Mark;
 pub(crate) use pair_key::PairKey;
+pub use settings::ProjectSettings;
 pub(crate) use settings::{Settings, Written};
 pub(crate) use shapes::made_of_parts;

@@ -64,6 +64,35 @@ impl Settings {
     }
 }
 
+/// A collider's settings as the project set them, without what the rules
+/// wrote: what the collider shows once the rules let it go, or after
+/// [`RuleHooks::restore_project_settings`](crate::RuleHooks::restore_project_settings).
+/// Read them with [`RuleHooks::project_settings`](crate::RuleHooks::project_settings)
+/// to change one of them through Rapier on a collider the rules reach
+/// (`docs/semantics.md`, "The project's own settings").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProjectSettings {
+    /// The project's `Collider::collision_groups`.
+    pub collision_groups: InteractionGroups,
+    /// The project's `Collider::solver_groups`.
+    pub solver_groups: InteractionGroups,
+    /// The project's `Collider::active_collision_types`.
+    pub active_collision_types: ActiveCollisionTypes,
+    /// The project's `Collider::active_hooks`.
+    pub active_hooks: ActiveHooks,
+}
+
+impl From<Settings> for ProjectSettings {
+    fn from(settings: Settings) -> ProjectSettings {
+        ProjectSettings {
+            collision_groups: settings.collision,
+            solver_groups: settings.solver,
+            active_collision_types: settings.types,
+            active_hooks: settings.hooks,
+        }
+    }
+}
+
 impl Written {
     /// The project's settings as of `now`: those the project changed since
     /// the crate wrote, the remembered ones otherwise.

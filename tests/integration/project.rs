@@ -405,6 +405,92 @@ fn a_collider_the_rules_let_go_of_gets_the_project_settings_back() {
     );
 }
 
+/// A project that changes one of its settings by reading it and writing
+/// it back, on colliders the rules wrote to, reads it with
+/// `project_settings`: the change is then exactly the project's, and once
+/// the rules let the colliders go they have the project's settings and
+/// nothing of the rules'. Read from the collider instead, the value carries
+/// the rules' bits, which the crate takes as the project's (documented):
+/// found by trying the project's settings from the docs alone, where the
+/// floor kept the crate's filter bit after the rule was gone and a project
+/// ball in that group fell through it (y = -9.07; plain Rapier 1.00).
+#[test]
+fn settings_read_with_project_settings_and_written_back_keep_only_the_projects_change() {
+    let mut scene = Scene::new();
+    let (ghost_body, ghost) = scene.cube(0.0, 3.0);
+    let (hooked_body, hooked) = scene.cube(5.0, 0.5);
+    let mut hooks = RuleHooks::default();
+    // The floor and the ghost share a bit; the hooked cube is the hook's.
+    hooks.rules_mut().set_specific(ghost_body, scene.ground, NoPair);
+    hooks.rules_mut().set_personal(hooked_body, NoContacts);
+    hooks.step(&mut scene.world);
+    let floor = scene.floor;
+    let wrote = [floor, ghost].map(|c| scene.world.colliders[c].collision_groups());
+    assert!(
+        wrote.iter().any(|&g| g != InteractionGroups::all()),
+        "the rule is in Rapier's groups: {wrote:?}"
+    );
+    let colliders = &scene.world.colliders;
+    let own = |c| hooks.project_settings(colliders, c).expect("a collider");
+    let (floor_own, hooked_own) = (own(floor), own(hooked));
+    assert_eq!(
+        (floor_own.collision_groups, hooked_own.active_hooks),
+        (InteractionGroups::all(), ActiveHooks::empty()),
+        "the project's own, without the rules' bits"
+    );
+    // The project's read-modify-write: a layer out of the floor's
+    // memberships, a hook of its own on the hooked cube.
+    let groups = floor_own.collision_groups;
+    scene.world.colliders[floor].set_collision_groups(InteractionGroups::new(
+        groups.memberships - Group::GROUP_5,
+        groups.filter,
+        groups.test_mode,
+    ));
+    scene.world.colliders[hooked]
+        .set_active_hooks(hooked_own.active_hooks | ActiveHooks::MODIFY_SOLVER_CONTACTS);
+    hooks.step(&mut scene.world);
+    hooks.rules_mut().remove_specific(ghost_body, scene.ground);
+    hooks.rules_mut().set_personal(hooked_body, Defer);
+    for _ in 0..5 {
+        hooks.step(&mut scene.world);
+    }
+    let project_floor = layer(Group::ALL - Group::GROUP_5, Group::ALL);
+    let settings = |scene: &Scene| {
+        let (f, h) = (&scene.world.colliders[floor], &scene.world.colliders[hooked]);
+        (f.collision_groups(), h.active_hooks())
+    };
+    assert_eq!(
+        settings(&scene),
+        (project_floor, ActiveHooks::MODIFY_SOLVER_CONTACTS),
+        "the rules gone, the floor and the cube have the project's settings"
+    );
+    hooks.restore_project_settings(&mut scene.world.colliders);
+    assert_eq!(
+        settings(&scene),
+        (project_floor, ActiveHooks::MODIFY_SOLVER_CONTACTS),
+        "and restore gives the same back"
+    );
+    // What that means: a project ball in any one group lands on the floor.
+    let balls: Vec<(u32, RigidBodyHandle)> = (0..32)
+        .map(|i| {
+            let body = scene.world.insert_body(
+                RigidBodyBuilder::dynamic().translation(at(-10.0 + 0.6 * i as f32, 1.0)),
+            );
+            let groups = layer(Group::from_bits_retain(1 << i), Group::ALL);
+            let ball = ColliderBuilder::ball(0.25).collision_groups(groups);
+            scene.world.insert_collider(ball, Some(body));
+            (i, body)
+        })
+        .collect();
+    for _ in 0..90 {
+        hooks.step(&mut scene.world);
+    }
+    for (i, body) in balls {
+        let y = scene.y(body);
+        assert!(y > 0.2, "the ball in group {} fell through the floor: y = {y}", i + 1);
+    }
+}
+
 #[test]
 fn a_ruled_collider_on_its_own_layer_is_hooked_and_keeps_the_layer() {
     // Column 0 is on the debris layer and in a group that never pairs with

@@ -111,9 +111,9 @@ pub use table::{ContextRuleTable, RuleTable};
 /// everything [`CollisionRules`] and its [`RuleHooks`] take and give.
 pub use collision_rules::{
     CalculatorContext, CollisionGroup, CollisionRule, CollisionRuleSet, Explanation, FullPass,
-    GroupTable, ManifoldUpdate, Node, OneWay, OneWayKind, PairCreated, PlanCause, Problem, Reach,
-    RecalculationPolicy, RuleChange, RuleColor, RuleError, RuleEvent, RuleEventHandler, RuleHooks,
-    RulePalette, Stage, StepStats, TearListener, Until, WorldRef,
+    GroupTable, ManifoldUpdate, Node, OneWay, OneWayKind, PairCreated, PlanCause, Problem,
+    ProjectSettings, Reach, RecalculationPolicy, RuleChange, RuleColor, RuleError, RuleEvent,
+    RuleEventHandler, RuleHooks, RulePalette, Stage, StepStats, TearListener, Until, WorldRef,
 };
 /// The main crate, for what is not re-exported here (its dimension's
 /// module, its Rapier).

@@ -67,6 +67,7 @@ pub enum LoadError {
 
 /// One rule record and the nodes that share it.
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct SavedRecord {
     users: Vec<Node>,
     personal: CollisionRule,
@@ -82,6 +83,11 @@ struct SavedRecord {
 /// checks it at once and reports a refusal through the format's error as
 /// text; deserializing a `SavedRuleSet` and converting it with
 /// `CollisionRuleSet::try_from` gives the refusal as a typed [`LoadError`].
+///
+/// A field this version does not know is refused (`unknown field`): a save
+/// made by a later version, whose rules this one would drop in silence, is
+/// not loaded. Fields added since the first saves are optional, so earlier
+/// saves load.
 ///
 /// ```
 /// use rapier_collision_rules::{CollisionRule, CollisionRuleSet, LoadError, SavedRuleSet};
@@ -99,6 +105,7 @@ struct SavedRecord {
 /// }
 /// ```
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SavedRuleSet {
     default_rule: CollisionRule,
     group_count: u32,

@@ -237,7 +237,7 @@ fn a_corrupt_save_loads_as_an_error_naming_the_problem() {
     };
     // (what is broken, how, what the error says)
     type Corrupt = fn(&mut serde_json::Value, &[serde_json::Value]);
-    let table: [(&str, Corrupt, &str); 5] = [
+    let table: [(&str, Corrupt, &str); 7] = [
         (
             "a group past the count",
             |v, _| {
@@ -285,6 +285,22 @@ fn a_corrupt_save_loads_as_an_error_naming_the_problem() {
                 v["parents"].as_array_mut().expect("parents").push(link);
             },
             "more than one parent",
+        ),
+        // Found by trying saves from the docs alone: a field of a later
+        // version loaded in silence, its meaning dropped.
+        (
+            "a field of a later version",
+            |v, _| {
+                v["version"] = serde_json::json!("9.9.9");
+            },
+            "unknown field `version`",
+        ),
+        (
+            "a record's field of a later version",
+            |v, _| {
+                v["records"][0]["priority"] = serde_json::json!(3);
+            },
+            "unknown field `priority`",
         ),
     ];
     for (what, corrupt, says) in table {

@@ -76,6 +76,18 @@ pub(crate) fn bare_carrier(entity: Entity) -> String {
     )
 }
 
+/// The warning for a `ContextRuleTable` on an entity that is not a physics
+/// context.
+pub(crate) fn table_off_context(entity: Entity) -> String {
+    format!(
+        "{entity} has a ContextRuleTable but is not a physics context (no \
+         RapierContextSimulation): no context reads it, and its groups and default rule reach \
+         nothing. Fix: insert it on the context's entity (the one with \
+         RapierContextSimulation; DefaultRapierContext for the default one), or change the \
+         shared RuleTable resource."
+    )
+}
+
 /// Runs once, at the first run of the plugin's systems: by then Bevy has
 /// initialized every system of the schedule, so if bevy_rapier steps there
 /// with hooks that include `CollisionRulesHooks`, the [`HooksProbe`] has

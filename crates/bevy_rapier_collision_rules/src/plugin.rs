@@ -202,7 +202,8 @@ impl Plugin for CollisionRulesPlugin {
         count_carriers::<SpecificRules>(app);
         count_carriers::<OneWaySurface>(app);
         count_carriers::<ContextRuleTable>(app);
-        app.add_observer(note_new_context);
+        app.add_observer(note_new_context)
+            .add_observer(check_table_placement);
         // Warns once if bevy_rapier does not step with the rules' hooks here.
         app.add_systems(
             self.schedule,
@@ -282,6 +283,17 @@ fn count_carriers<T: Component>(app: &mut App) {
 /// A new context takes the shared table.
 fn note_new_context(event: On<Add<CollisionRules>>, mut ledger: ResMut<Ledger>) {
     ledger.table_dropped.push(event.entity);
+}
+
+/// A `ContextRuleTable` on an entity that is not a physics context is read
+/// by nothing: warned about, naming the entity and the fix.
+fn check_table_placement(
+    event: On<Add<ContextRuleTable>>,
+    contexts: Query<(), With<RapierContextSimulation>>,
+) {
+    if !contexts.contains(event.entity) {
+        log::warn!("{}", super::misuse::table_off_context(event.entity));
+    }
 }
 
 /// A context that dropped its own table takes the shared one again.

@@ -319,3 +319,50 @@ fn rules_on_an_entity_without_a_physics_object_warn_once_naming_it() {
         "the rule on the ball itself holds: it fell through, y = {y}"
     );
 }
+
+/// A `ContextRuleTable` on a rigid body (not a physics context) is read by
+/// nothing: a warning names the entity and the fix. Found by trying the 3D
+/// adapter from its docs alone, where the ball rested in silence. On the
+/// context itself it warns nothing.
+#[test]
+fn a_context_table_off_a_context_warns_naming_it() {
+    use bevy_rapier::plugin::context::DefaultRapierContext;
+    let _turn = turn();
+    let mut app = headless((
+        RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
+        CollisionRulesPlugin::default(),
+    ));
+    app.update();
+    let ghostly = || {
+        let mut table = RuleTable::default();
+        table.set_default_rule(NoContacts);
+        ContextRuleTable(table)
+    };
+    let context = app
+        .world_mut()
+        .query_filtered::<Entity, With<DefaultRapierContext>>()
+        .single(app.world())
+        .unwrap();
+    app.world_mut().entity_mut(context).insert(ghostly());
+    assert!(warnings().is_empty(), "on the context: {:?}", warnings());
+    app.world_mut()
+        .entity_mut(context)
+        .remove::<ContextRuleTable>();
+    let ball = app
+        .world_mut()
+        .spawn((
+            Transform::from_xyz(0.0, 0.5, 0.0),
+            RigidBody::Dynamic,
+            Collider::ball(0.25),
+            ghostly(),
+        ))
+        .id();
+    let warnings = warnings();
+    assert_eq!(warnings.len(), 1, "{warnings:#?}");
+    assert!(
+        warnings[0].contains(&ball.to_string())
+            && warnings[0].contains("Fix: insert it on the context's entity"),
+        "names the ball ({ball}) and the fix: {}",
+        warnings[0]
+    );
+}

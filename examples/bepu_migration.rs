@@ -126,13 +126,47 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "BroadPhase.CollisionRuleCalculator = f  ->  hooks.set_calculator(f) (f can call ctx.default_rule())"
     );
-    hooks.set_calculator(|ctx| ctx.default_rule());
+    // The second box ignores the floor's contacts; everything else as the
+    // default calculation says.
+    hooks.set_calculator(move |ctx| {
+        if [ctx.collider1, ctx.collider2].contains(&cb) {
+            CollisionRule::NoContacts
+        } else {
+            ctx.default_rule()
+        }
+    });
+    hooks.step(&mut world);
+    check(
+        "the calculator decides the pair",
+        hooks.pair_rule(&world, cb, floor) == Some(CollisionRule::NoContacts),
+    )?;
     hooks.remove_calculator();
+    hooks.step(&mut world);
+    check(
+        "removed, the default calculation decides again",
+        hooks.pair_rule(&world, cb, floor) == Some(CollisionRule::Normal),
+    )?;
 
     println!("immediate event on pair creation  ->  hooks.on_pair_created(|pair| Some(rule))");
-    for _ in 0..2 {
-        hooks.step(&mut world);
-    }
+    hooks.on_pair_created(move |pair| {
+        [pair.collider1, pair.collider2]
+            .contains(&cb)
+            .then_some(CollisionRule::NoResponse)
+    });
+    // The callback also runs when a pair's rule is recalculated.
+    hooks.force_recalculation(b);
+    hooks.step(&mut world);
+    check(
+        "the callback's answer holds for the pair",
+        hooks.pair_rule(&world, floor, cb) == Some(CollisionRule::NoResponse),
+    )?;
+    hooks.remove_pair_created();
+    hooks.force_recalculation(b);
+    hooks.step(&mut world);
+    check(
+        "removed, the pair follows the rules again",
+        hooks.pair_rule(&world, floor, cb) == Some(CollisionRule::Normal),
+    )?;
     println!("pair.CollisionRule = rule  ->  hooks.set_pair_rule(&world, a, b, rule)");
     check(
         "the live pair takes the override",

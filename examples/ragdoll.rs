@@ -44,7 +44,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     rules.set_group_rule(ragdoll, ragdoll, CollisionRule::NoPair);
     rules.set_group(limbs[0].1, Some(ragdoll));
     // Thighs under the pelvis, shins under the thighs, read from the joints.
-    let links = rules.set_parents_from_impulse_joints(&world.impulse_joints, limbs[0].1)?;
+    let links =
+        rules.set_parents_from_impulse_joints(&world.impulse_joints, &world.bodies, limbs[0].1)?;
     println!("parent links read from the joints: {links}");
     if rules.parent(limbs[2].1) != Some(limbs[1].1) {
         return Err("the left shin does not hang under the left thigh".into());

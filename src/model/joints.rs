@@ -7,6 +7,7 @@ use std::collections::VecDeque;
 use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
+use super::body_kinds::dynamic_body;
 use super::super::{CollisionRuleSet, RuleError};
 
 impl CollisionRuleSet {
@@ -55,10 +56,14 @@ impl CollisionRuleSet {
         self.set_parents(&links)
     }
 
-    /// Walks the impulse joints from `root` and gives every body it reaches
-    /// the body it was reached from as parent in the parent map (a
-    /// breadth-first tree: a loop of joints is entered once). Returns how
-    /// many links were set. All or nothing, as
+    /// Walks the impulse joints from `root` and gives every dynamic body it
+    /// reaches the body it was reached from as parent in the parent map (a
+    /// breadth-first tree: a loop of joints is entered once). A body that
+    /// is not dynamic (the fixed ground a robot's base is bolted to, a
+    /// kinematic carrier) is an anchor, not a link: it gets no parent and
+    /// the walk does not go through it, so a ground that holds several
+    /// robots does not make them, and everything else on it, one
+    /// mechanism. Returns how many links were set. All or nothing, as
     /// [`set_parents_from_multibody`](Self::set_parents_from_multibody).
     ///
     /// ```
@@ -66,21 +71,27 @@ impl CollisionRuleSet {
     /// use rapier_collision_rules::{CollisionRuleSet, RuleError};
     ///
     /// let mut world = PhysicsWorld::new();
+    /// let ground = world.insert_body(RigidBodyBuilder::fixed());
     /// let torso = world.insert_body(RigidBodyBuilder::dynamic());
     /// let arm = world.insert_body(RigidBodyBuilder::dynamic());
     /// let hand = world.insert_body(RigidBodyBuilder::dynamic());
     /// let joint = || SphericalJointBuilder::new().local_anchor2(Vector::new(0.0, 0.5, 0.0));
     /// world.impulse_joints.insert(torso, arm, joint(), true);
     /// world.impulse_joints.insert(hand, arm, joint(), true);
+    /// // Bolted to the ground, which the walk leaves alone.
+    /// world.impulse_joints.insert(ground, torso, FixedJointBuilder::new(), true);
     ///
     /// let mut rules = CollisionRuleSet::default();
-    /// assert_eq!(rules.set_parents_from_impulse_joints(&world.impulse_joints, torso)?, 2);
+    /// let (joints, bodies) = (&world.impulse_joints, &world.bodies);
+    /// assert_eq!(rules.set_parents_from_impulse_joints(joints, bodies, torso)?, 2);
     /// assert_eq!((rules.parent(hand), rules.parent(arm)), (Some(arm), Some(torso)));
+    /// assert_eq!(rules.parent(ground), None);
     /// # Ok::<(), RuleError>(())
     /// ```
     pub fn set_parents_from_impulse_joints(
         &mut self,
         joints: &ImpulseJointSet,
+        bodies: &RigidBodySet,
         root: RigidBodyHandle,
     ) -> Result<usize, RuleError> {
         let mut links = Vec::new();
@@ -89,7 +100,7 @@ impl CollisionRuleSet {
         while let Some(body) = queue.pop_front() {
             for (a, b, _, _) in joints.attached_joints(body) {
                 let other = if a == body { b } else { a };
-                if seen.insert(other) {
+                if seen.insert(other) && dynamic_body(bodies, Some(other)) {
                     links.push((other, body));
                     queue.push_back(other);
                 }

@@ -2,8 +2,8 @@
 //! hand, and a refused one changes nothing.
 
 use super::rapier::prelude::*;
-use super::rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleError};
-use super::{at, ball_joint};
+use super::rules::{CollisionGroup, CollisionRule, CollisionRuleSet, RuleError, RuleHooks};
+use super::{at, ball_joint, cuboid};
 
 /// A ragdoll: pelvis, torso, head, two arms of two links, two legs of two
 /// links; `(child, parent)` in the order they are jointed.
@@ -124,7 +124,7 @@ fn impulse_joints_from_a_root_give_the_parent_map_written_by_hand() -> Result<()
     )?;
     let from_joints = rules_with(
         |rules| {
-            let set = rules.set_parents_from_impulse_joints(&world.impulse_joints, pelvis)?;
+            let set = rules.set_parents_from_impulse_joints(&world.impulse_joints, &world.bodies, pelvis)?;
             assert_eq!(set, links.len());
             Ok(())
         },
@@ -148,10 +148,67 @@ fn a_joint_map_that_would_close_a_cycle_is_refused_and_changes_nothing() {
     let shin = links[5].0;
     rules.set_parent(pelvis, shin).expect("a root under a body");
     let before = sorted(&rules);
-    let refused = rules.set_parents_from_impulse_joints(&world.impulse_joints, pelvis);
+    let refused = rules.set_parents_from_impulse_joints(&world.impulse_joints, &world.bodies, pelvis);
     assert!(
         matches!(refused, Err(RuleError::Cycle { .. })),
         "a cycle through the existing link: {refused:?}"
     );
     assert_eq!(sorted(&rules), before, "the refused call changed the map");
+}
+
+/// Two robot arms bolted to one fixed ground, and a crate hanging from the
+/// ground on a rope: reading arm A's hierarchy from its joints parents
+/// A's links and stops at the ground, which is an anchor, not a link. Found
+/// by trying hierarchies from joints from the docs alone: the walk went
+/// through the ground, made it and arm B children of A's base, and A's
+/// group rule then let the crate fall through the floor (y = -2.5, 0.3
+/// without reading the joints).
+#[test]
+fn the_walk_of_impulse_joints_stops_at_bodies_that_are_not_dynamic() -> Result<(), RuleError> {
+    let mut world = PhysicsWorld::new();
+    let ground = world.insert_body(RigidBodyBuilder::fixed());
+    world.insert_collider(cuboid(10.0, 0.5, 10.0), Some(ground));
+    let mut arm = |x: f32| {
+        let links: Vec<RigidBodyHandle> = (0..3)
+            .map(|i| {
+                let body = world.insert_body(
+                    RigidBodyBuilder::dynamic().translation(at(x, 1.0 + 0.6 * i as f32)),
+                );
+                world.insert_collider(ColliderBuilder::capsule_y(0.2, 0.1), Some(body));
+                body
+            })
+            .collect();
+        world
+            .impulse_joints
+            .insert(ground, links[0], FixedJointBuilder::new(), true);
+        for pair in links.windows(2) {
+            world.impulse_joints.insert(pair[0], pair[1], joint(), true);
+        }
+        links
+    };
+    let (a, b) = (arm(-3.0), arm(3.0));
+    let hanging = world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 0.8)));
+    world.insert_collider(cuboid(0.25, 0.25, 0.25), Some(hanging));
+    let rope = RopeJointBuilder::new(2.0);
+    world.impulse_joints.insert(ground, hanging, rope, true);
+
+    let mut rules = CollisionRuleSet::default();
+    let arms = rules.create_group();
+    rules.set_group_rule(arms, arms, CollisionRule::NoPair);
+    rules.set_group(a[0], Some(arms));
+    let set = rules.set_parents_from_impulse_joints(&world.impulse_joints, &world.bodies, a[0])?;
+    let parents: Vec<Option<RigidBodyHandle>> =
+        [ground, b[0], hanging].iter().map(|&body| rules.parent(body)).collect();
+    assert_eq!(
+        (set, rules.parent(a[1]), rules.parent(a[2]), parents),
+        (2, Some(a[0]), Some(a[1]), vec![None; 3]),
+        "A's two links under its base; the ground, B and the crate untouched"
+    );
+    let mut hooks = RuleHooks::new(rules);
+    for _ in 0..90 {
+        hooks.step(&mut world);
+    }
+    let y = world.bodies[hanging].translation().y;
+    assert!(y > 0.2, "the crate rests on the ground: y = {y}");
+    Ok(())
 }

@@ -342,9 +342,8 @@ impl RuleHooks {
     /// (`hooks/tears.rs`).
     #[inline]
     fn decides(&self, colliders: &ColliderSet, a: ColliderHandle, b: ColliderHandle) -> bool {
-        let plan = &self.planned.plan.colliders;
-        let hooked = |c| plan.get(c).is_some_and(|p| p.hooked());
-        hooked(a) || hooked(b) || (self.soft.tear_log().any() && (self.torn_copy(colliders, a) || self.torn_copy(colliders, b)))
+        let plan = &self.planned.plan;
+        plan.hooks(a) || plan.hooks(b) || (self.soft.tear_log().any() && (self.torn_copy(colliders, a) || self.torn_copy(colliders, b)))
     }
 
     /// The project's hooks, if the project's own bits on `a` or `b` ask for

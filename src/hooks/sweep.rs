@@ -82,9 +82,7 @@ impl RuleHooks {
         // Rapier may have made some without asking the hook (the bodies
         // rest), and those of a hooked collider are live all the same.
         let touched = std::mem::take(&mut self.queued.touched);
-        let hooked = |plan: &Plan, c: ColliderHandle| {
-            plan.colliders.get(c).is_some_and(|p| p.hooked())
-        };
+        let hooked = |plan: &Plan, c: ColliderHandle| plan.hooks(c);
         let mut unseen = Vec::new();
         for &c in &touched {
             if !hooked(&self.planned.plan, c) {

@@ -44,7 +44,6 @@ impl RuleHooks {
         }
         let (a, b) = key.colliders();
         let plan = &self.planned.plan;
-        let hooked = |c: ColliderHandle| plan.colliders.get(c).is_some_and(|p| p.hooked());
         let same = self
             .pairs
             .get(key)
@@ -52,7 +51,7 @@ impl RuleHooks {
         if same
             && colliders.contains(a)
             && colliders.contains(b)
-            && (hooked(a) || hooked(b))
+            && (plan.hooks(a) || plan.hooks(b))
             && witness_overridden(narrow_phase, key, rule)
         {
             self.report_unhooked(&format!(

@@ -58,7 +58,7 @@ impl RuleHooks {
             .filter(|(_, s)| s.manifold == ManifoldUpdate::Never)
             .map(|(k, _)| {
                 let (a, b) = k.colliders();
-                if plan.colliders.get(a).is_some_and(|p| p.hooked()) {
+                if plan.hooks(a) {
                     a
                 } else {
                     b
@@ -173,7 +173,7 @@ impl RuleHooks {
             .planned
             .roster
             .colliders()
-            .filter(|&c| self.planned.plan.colliders.get(c).is_some_and(|p| p.hooked()))
+            .filter(|&c| self.planned.plan.hooks(c))
             .count();
     }
 

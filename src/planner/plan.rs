@@ -76,6 +76,12 @@ pub(crate) struct Plan {
 }
 
 impl Plan {
+    /// Whether the plan hooks `collider`: the hook decides its pairs.
+    #[inline]
+    pub(crate) fn hooks(&self, collider: ColliderHandle) -> bool {
+        self.colliders.get(collider).is_some_and(ColliderPlan::hooked)
+    }
+
     /// Forgets `collider` (removed, or no longer reached); `true` if the
     /// whole plan must be made again: the last member of a class left (the
     /// groups' settings follow which classes have members), or its personal

@@ -88,6 +88,17 @@ fn headless<M>(physics: impl Plugins<M>) -> App {
     app
 }
 
+/// bevy_rapier stepping with the rules' hooks, and the rules' plugin.
+fn whole_set_up() -> (
+    RapierPhysicsPlugin<CollisionRulesHooks<'static, 'static>>,
+    CollisionRulesPlugin,
+) {
+    (
+        RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
+        CollisionRulesPlugin::default(),
+    )
+}
+
 /// A headless app with `physics`, stepped by hand for 60 frames of 1/60 s,
 /// a ball over a floor whose rule with it is `NoContacts` (a rule only the
 /// hooks can keep). Returns the ball's height.
@@ -272,10 +283,7 @@ fn whole_set_ups_and_plain_bevy_rapier_do_not_warn() {
 #[test]
 fn rules_on_an_entity_without_a_physics_object_warn_once_naming_it() {
     let _turn = turn();
-    let mut app = headless((
-        RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
-        CollisionRulesPlugin::default(),
-    ));
+    let mut app = headless(whole_set_up());
     let world = app.world_mut();
     world.spawn((
         Transform::from_xyz(0.0, -0.5, 0.0),
@@ -328,10 +336,7 @@ fn rules_on_an_entity_without_a_physics_object_warn_once_naming_it() {
 fn a_context_table_off_a_context_warns_naming_it() {
     use bevy_rapier::plugin::context::DefaultRapierContext;
     let _turn = turn();
-    let mut app = headless((
-        RapierPhysicsPlugin::<CollisionRulesHooks>::default(),
-        CollisionRulesPlugin::default(),
-    ));
+    let mut app = headless(whole_set_up());
     app.update();
     let ghostly = || {
         let mut table = RuleTable::default();

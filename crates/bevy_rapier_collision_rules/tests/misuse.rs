@@ -88,6 +88,15 @@ fn headless<M>(physics: impl Plugins<M>) -> App {
     app
 }
 
+/// A dynamic ball of radius 0.25 at (x, 0.5), over the floor.
+fn ball(x: f32) -> impl Bundle {
+    (
+        Transform::from_xyz(x, 0.5, 0.0),
+        RigidBody::Dynamic,
+        Collider::ball(0.25),
+    )
+}
+
 /// bevy_rapier stepping with the rules' hooks, and the rules' plugin.
 fn whole_set_up() -> (
     RapierPhysicsPlugin<CollisionRulesHooks<'static, 'static>>,
@@ -113,12 +122,7 @@ fn run<M>(physics: impl Plugins<M>) -> f32 {
         .id();
     let ball = app
         .world_mut()
-        .spawn((
-            Transform::from_xyz(0.0, 0.5, 0.0),
-            RigidBody::Dynamic,
-            Collider::ball(0.25),
-            SpecificRules::new().with(floor, NoContacts),
-        ))
+        .spawn((ball(0.0), SpecificRules::new().with(floor, NoContacts)))
         .id();
     for _ in 0..60 {
         app.update();
@@ -289,13 +293,6 @@ fn rules_on_an_entity_without_a_physics_object_warn_once_naming_it() {
         Transform::from_xyz(0.0, -0.5, 0.0),
         dimension::cuboid(5.0, 0.5, 5.0),
     ));
-    let ball = |x: f32| {
-        (
-            Transform::from_xyz(x, 0.5, 0.0),
-            RigidBody::Dynamic,
-            Collider::ball(0.25),
-        )
-    };
     // Two plain parents, each with a ball under it, and a ball with its
     // rule on itself.
     let parents: Vec<Entity> = [-2.0, 2.0]
@@ -353,15 +350,7 @@ fn a_context_table_off_a_context_warns_naming_it() {
     app.world_mut()
         .entity_mut(context)
         .remove::<ContextRuleTable>();
-    let ball = app
-        .world_mut()
-        .spawn((
-            Transform::from_xyz(0.0, 0.5, 0.0),
-            RigidBody::Dynamic,
-            Collider::ball(0.25),
-            ghostly(),
-        ))
-        .id();
+    let ball = app.world_mut().spawn((ball(0.0), ghostly())).id();
     let warnings = warnings();
     assert_eq!(warnings.len(), 1, "{warnings:#?}");
     assert!(

@@ -32,7 +32,7 @@ impl RuleHooks {
     /// step was taken without the hooks, between their `prepare` and
     /// `after_step` (`world.step()` where the hooks should have been
     /// passed). The witness of the last step, still hooked with the same
-    /// rule and not answered since, shows another answer in Rapier's graph.
+    /// rule, shows another answer in Rapier's graph.
     /// A step with the hooks that asks nothing (the bodies sleep) leaves
     /// the pair's contacts as the hook left them. Takes the witness.
     pub(super) fn check_witness_after(&mut self, narrow_phase: &NarrowPhase, colliders: &ColliderSet) {
@@ -44,10 +44,9 @@ impl RuleHooks {
         }
         let (a, b) = key.colliders();
         let plan = &self.planned.plan;
-        let same = self
-            .pairs
-            .get(key)
-            .is_some_and(|state| state.rule() == rule && !state.answered_in(self.boundary.step));
+        // Asked nothing, so not this pair either: still hooked with the
+        // same rule, its contacts are the hook's last answer or Rapier's own.
+        let same = self.pairs.get(key).is_some_and(|state| state.rule() == rule);
         if same
             && colliders.contains(a)
             && colliders.contains(b)

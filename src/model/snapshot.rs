@@ -63,6 +63,26 @@ pub enum LoadError {
     /// parent).
     #[error("saved parent map: {0}")]
     ParentMap(RuleError),
+    /// What the saving hooks had written is saved twice for one collider
+    /// (its slot): only one can be what the collider holds.
+    #[error("saved writes name collider {collider:?} (or its slot) more than once")]
+    WrittenTwice {
+        /// The collider.
+        collider: ColliderHandle,
+    },
+    /// A saved decision that no hooks make: of an entry decided twice, a
+    /// side that is not one of the entry's nodes, a kind or bit out of
+    /// range, or bits that would set apart pairs no entry names. Loaded, it
+    /// would panic at the first step or change pairs the rules do not name.
+    #[error("saved decision of the entry of {node:?} and {other:?}: {why}")]
+    BadDecision {
+        /// The entry's first node.
+        node: Node,
+        /// The entry's other node.
+        other: Node,
+        /// What is wrong with it.
+        why: &'static str,
+    },
 }
 
 /// One rule record and the nodes that share it.
@@ -228,8 +248,87 @@ impl SavedRuleSet {
                 return Err(LoadError::TwoParents { child });
             }
         }
-        Ok(())
+        let mut slots = hashbrown::HashSet::new();
+        for &(collider, _) in &self.writes {
+            if !slots.insert(collider.into_raw_parts().0) {
+                return Err(LoadError::WrittenTwice { collider });
+            }
+        }
+        check_decisions(&self.decisions)
     }
+}
+
+/// What the planner's decisions always are (`planner/decisions.rs`): each
+/// entry decided once, in the node order, with its own nodes; a `Bits`
+/// decision of kind 0 or 1 on one of the 32 bits; one bit per node for each
+/// role and kind; and every carrier of a bit set apart from every node that
+/// shares it by an entry of that bit (else the bit would set apart a pair
+/// no entry names).
+fn check_decisions(decisions: &[(Node, Node, Decision)]) -> Result<(), LoadError> {
+    use hashbrown::{HashMap, HashSet};
+    let mut entries = HashSet::new();
+    // The entries decided with a bit, with its kind and number.
+    let mut on_bits = HashSet::new();
+    // (node, carries, kind) -> bit
+    let mut bits: HashMap<(Node, bool, usize), u32> = HashMap::new();
+    // (kind, bit) -> (carriers, sharers)
+    let mut stars: HashMap<(usize, u32), (HashSet<Node>, HashSet<Node>)> = HashMap::new();
+    for &(node, other, decision) in decisions {
+        let bad = |why| Err(LoadError::BadDecision { node, other, why });
+        if node >= other {
+            return bad("its nodes are not two, in the node order");
+        }
+        if !entries.insert((node, other)) {
+            return bad("decided more than once");
+        }
+        match decision {
+            Decision::Hooked { side } if side != node && side != other => {
+                return bad("its hooked side is not one of its nodes");
+            }
+            Decision::Hooked { .. } => {}
+            Decision::Bits {
+                carrying,
+                other: sharing,
+                kind,
+                bit,
+            } => {
+                if (carrying, sharing) != (node, other) && (carrying, sharing) != (other, node) {
+                    return bad("its bit's sides are not its nodes");
+                }
+                if kind > 1 || bit > 31 {
+                    return bad("a kind past 1 or a bit past 31");
+                }
+                for (side, carries) in [(carrying, true), (sharing, false)] {
+                    if *bits.entry((side, carries, kind)).or_insert(bit) != bit {
+                        return bad("a node on two bits of one kind");
+                    }
+                }
+                on_bits.insert(((node, other), kind, bit));
+                let (carriers, sharers) = stars.entry((kind, bit)).or_default();
+                carriers.insert(carrying);
+                sharers.insert(sharing);
+            }
+        }
+    }
+    for (&(kind, bit), (carriers, sharers)) in &stars {
+        for &carrying in carriers {
+            for &sharing in sharers {
+                let entry = if carrying < sharing {
+                    (carrying, sharing)
+                } else {
+                    (sharing, carrying)
+                };
+                if !on_bits.contains(&(entry, kind, bit)) {
+                    return Err(LoadError::BadDecision {
+                        node: entry.0,
+                        other: entry.1,
+                        why: "a bit sets the pair apart without an entry of that bit",
+                    });
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 impl TryFrom<SavedRuleSet> for CollisionRuleSet {

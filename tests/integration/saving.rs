@@ -354,6 +354,54 @@ proptest::proptest! {
     }
 }
 
+proptest::proptest! {
+    #![proptest_config(proptest::test_runner::Config {
+        cases: crate::dim3::world::env_or("LOADER_CASES", 512, |v| v.parse().ok()) / 4,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5a7e_d0c5),
+        failure_persistence: None,
+        ..proptest::test_runner::Config::default()
+    })]
+
+    /// The saved writes and decisions of a stepped world with numbers
+    /// changed at random: an error, or a rule set whose world steps on
+    /// without a panic.
+    #[test]
+    fn a_loaded_save_with_damaged_decisions_steps_or_is_refused(
+        changes in proptest::collection::vec(
+            (proptest::prelude::any::<proptest::sample::Index>(), 0u32..40),
+            1..4,
+        ),
+    ) {
+        static SAVED: std::sync::OnceLock<(String, serde_json::Value)> = std::sync::OnceLock::new();
+        let (world, rules) = SAVED.get_or_init(|| {
+            let (mut world, rules) = ruled_pile();
+            let mut hooks = pile_hooks(rules);
+            for _ in 0..7 {
+                hooks.step(&mut world);
+            }
+            let rules = serde_json::to_value(hooks.rules()).expect("a rule set saves");
+            (serde_json::to_string(&world).expect("a world saves"), rules)
+        });
+        let mut value = rules.clone();
+        let mut leaves = Vec::new();
+        numeric_leaves(&value["decisions"], "/decisions".into(), &mut leaves);
+        numeric_leaves(&value["writes"], "/writes".into(), &mut leaves);
+        for (index, number) in changes {
+            let at = &leaves[index.index(leaves.len())];
+            if let Some(leaf) = value.pointer_mut(at) {
+                *leaf = serde_json::json!(number);
+            }
+        }
+        if let Ok(loaded) = load(value) {
+            let mut world: PhysicsWorld = serde_json::from_str(world).expect("the world loads");
+            let mut hooks = pile_hooks(loaded);
+            for _ in 0..5 {
+                hooks.step(&mut world);
+            }
+        }
+    }
+}
+
 /// A world with soft bodies, one of them cut, saved with its rule set and
 /// loaded: the soft bodies and their pieces keep their rules and step as
 /// the world that was not saved (`docs/semantics.md`, "Soft bodies").
@@ -836,4 +884,169 @@ fn a_world_put_in_place_without_world_replaced_is_reported()
         "the quickload without world_replaced is seen"
     );
     Ok(())
+}
+
+/// The rules of the pile after seven steps, saved: they carry what the
+/// hooks wrote and how they decided each specific entry.
+fn stepped_pile_rules() -> serde_json::Value {
+    let (mut world, rules) = ruled_pile();
+    let mut hooks = pile_hooks(rules);
+    for _ in 0..7 {
+        hooks.step(&mut world);
+    }
+    serde_json::to_value(hooks.rules()).expect("a rule set saves")
+}
+
+/// Found by damaging saves of a stepped world by hand: a damaged decision
+/// loaded, then panicked at the first step (a kind or bit out of range) or
+/// set apart a pair no rule names (a bit another entry's nodes use); a
+/// collider's writes saved twice loaded as the later one. Each is refused,
+/// naming the problem.
+#[test]
+fn a_corrupt_save_of_the_hooks_writes_and_decisions_loads_as_an_error_naming_it() {
+    let saved = stepped_pile_rules();
+    let decisions = saved["decisions"].as_array().expect("decisions").clone();
+    let bits: Vec<usize> = (0..decisions.len())
+        .filter(|&i| !decisions[i][2]["Bits"].is_null())
+        .collect();
+    let hooked = (0..decisions.len())
+        .find(|&i| !decisions[i][2]["Hooked"].is_null())
+        .expect("a hooked entry");
+    assert!(
+        bits.len() >= 2,
+        "two entries decided with bits: {decisions:?}"
+    );
+    assert!(
+        !saved["writes"].as_array().expect("writes").is_empty(),
+        "the hooks wrote"
+    );
+    let (a, b) = (bits[0], bits[1]);
+    let corrupt = |what: &str, change: &dyn Fn(&mut serde_json::Value), says: &str| {
+        let mut value = saved.clone();
+        change(&mut value);
+        match load(value) {
+            Ok(_) => panic!("{what}: loaded"),
+            Err(e) => assert!(e.contains(says), "{what}: the error says {e:?}"),
+        }
+    };
+    corrupt(
+        "a kind past 1",
+        &|v| v["decisions"][a][2]["Bits"]["kind"] = serde_json::json!(7),
+        "a kind past 1 or a bit past 31",
+    );
+    corrupt(
+        "a bit past 31",
+        &|v| v["decisions"][a][2]["Bits"]["bit"] = serde_json::json!(40),
+        "a kind past 1 or a bit past 31",
+    );
+    corrupt(
+        "a hooked side that is not the entry's",
+        &|v| {
+            let stranger = v["decisions"][a][0].clone();
+            v["decisions"][hooked][2]["Hooked"]["side"] = stranger;
+        },
+        "hooked side is not one of its nodes",
+    );
+    corrupt(
+        "a bit carried by another node",
+        &|v| {
+            let stranger = v["decisions"][hooked][0].clone();
+            v["decisions"][a][2]["Bits"]["carrying"] = stranger;
+        },
+        "its bit's sides are not its nodes",
+    );
+    corrupt(
+        "an entry decided twice",
+        &|v| {
+            let again = v["decisions"][a].clone();
+            v["decisions"]
+                .as_array_mut()
+                .expect("decisions")
+                .push(again);
+        },
+        "decided more than once",
+    );
+    corrupt(
+        "an entry's nodes out of order",
+        &|v| {
+            let entry = v["decisions"][a].as_array_mut().expect("an entry");
+            entry.swap(0, 1);
+        },
+        "in the node order",
+    );
+    corrupt(
+        "the bit of another entry's nodes",
+        &|v| {
+            let (kind, bit) = (
+                v["decisions"][b][2]["Bits"]["kind"].clone(),
+                v["decisions"][b][2]["Bits"]["bit"].clone(),
+            );
+            v["decisions"][a][2]["Bits"]["kind"] = kind;
+            v["decisions"][a][2]["Bits"]["bit"] = bit;
+        },
+        "without an entry of that bit",
+    );
+    corrupt(
+        "a collider's writes saved twice",
+        &|v| {
+            let again = v["writes"][0].clone();
+            v["writes"].as_array_mut().expect("writes").push(again);
+        },
+        "more than once",
+    );
+    assert!(load(saved).is_ok(), "the uncorrupted save loads");
+}
+
+/// What the checks of a loaded save's decisions ask holds of every save:
+/// turrets whose balls ignore them (`NoPair`) or pass through them
+/// (`NoResponse`), balls fired and removed every step, saved at every step,
+/// load.
+#[test]
+fn saves_of_a_world_that_changes_every_step_load_with_their_decisions() {
+    let mut world = PhysicsWorld::new();
+    let ground = world.insert_body(RigidBodyBuilder::fixed());
+    world.insert_collider(ColliderBuilder::cuboid(50.0, 0.5, 50.0), Some(ground));
+    let turrets: Vec<RigidBodyHandle> = (0..4)
+        .map(|i| {
+            let turret = world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(
+                i as f32 * 4.0,
+                1.5,
+                0.0,
+            )));
+            world.insert_collider(ColliderBuilder::cuboid(0.5, 1.0, 0.5), Some(turret));
+            turret
+        })
+        .collect();
+    let mut hooks = RuleHooks::new(CollisionRuleSet::default());
+    let mut fired = std::collections::VecDeque::new();
+    let mut decided = 0;
+    for step in 0..90u32 {
+        for (i, &turret) in turrets.iter().enumerate() {
+            let at = world.bodies[turret].translation();
+            let ball = world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .translation(at)
+                    .linvel(Vector::new(3.0, 4.0, (step % 5) as f32 - 2.0)),
+            );
+            world.insert_collider(ColliderBuilder::ball(0.1), Some(ball));
+            let rule = if (step as usize + i) % 3 == 0 {
+                NoResponse
+            } else {
+                NoPair
+            };
+            hooks.rules_mut().set_specific(ball, turret, rule);
+            fired.push_back(ball);
+        }
+        while fired.len() > 40 {
+            let old = fired.pop_front().expect("a ball");
+            world.remove_body(old);
+        }
+        hooks.step(&mut world);
+        let saved = serde_json::to_value(hooks.rules()).expect("a rule set saves");
+        decided = decided.max(saved["decisions"].as_array().map_or(0, Vec::len));
+        if let Err(e) = load(saved) {
+            panic!("step {step}: the save is refused: {e}");
+        }
+    }
+    assert!(decided >= 40, "the saves carried {decided} decisions");
 }

@@ -230,6 +230,16 @@ struct Boundary {
     /// before the next step, or after a step that asked the hooks nothing,
     /// Rapier stepped without the hooks.
     witness: Option<(PairKey, CollisionRule)>,
+    /// A convex pair with a one-way surface whose contacts the hook dropped
+    /// in this step, its manifold's standing forbidden (the first the hook
+    /// met; `one_way_noting` says one was): at `after_step` it becomes
+    /// `one_way_witness`.
+    one_way_noted: Mutex<Option<PairKey>>,
+    one_way_noting: AtomicBool,
+    /// The one-way witness of the last step: a forbidden standing keeps
+    /// the pair's solver contacts empty at every step with the hooks, so
+    /// solver contacts there mean Rapier stepped without them.
+    one_way_witness: Option<PairKey>,
     /// Whether stepping without the hooks was reported (once).
     reported_unhooked: bool,
     /// Whether a world put in place without `world_replaced` was reported
@@ -338,6 +348,9 @@ impl RuleHooks {
                 owe_freeze: false,
                 census: Census::default(),
                 witness: None,
+                one_way_noted: Mutex::new(None),
+                one_way_noting: AtomicBool::new(false),
+                one_way_witness: None,
                 reported_unhooked: false,
                 reported_foreign_marks: false,
                 dt: IntegrationParameters::default().dt,

@@ -139,11 +139,21 @@ impl RuleHooks {
                 kept.insert(part, user_data);
             }
         }
+        let convex = kept.is_none();
         drop(kept);
         if clear {
             rigid.solver_contacts.clear();
+            if convex && forbids(user_data) {
+                self.note_one_way_witness(part.0);
+            }
         }
     }
+}
+
+/// Whether a manifold's `user_data` holds a forbidden standing for either
+/// side: the hook drops that manifold's solver contacts at every update.
+pub(super) fn forbids(user_data: u32) -> bool {
+    [0, 1].into_iter().any(|side| standing(user_data, side) == Standing::Forbidden)
 }
 
 impl RuleHooks {

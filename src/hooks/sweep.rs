@@ -38,7 +38,7 @@ impl RuleHooks {
         if self.boundary.owe_freeze {
             missing("freeze_manifolds", "before the step, after prepare");
         }
-        self.check_witness_after(narrow_phase, colliders);
+        self.check_witness_after(narrow_phase, bodies, colliders);
         self.forget_part_standings(narrow_phase, colliders);
         let pending_empty = self
             .pending

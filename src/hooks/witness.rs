@@ -3,9 +3,13 @@
 
 use super::super::rapier::prelude::*;
 
+use std::sync::PoisonError;
+use std::sync::atomic::Ordering;
+
 use super::{PairKey, RuleHooks};
 use super::super::CollisionRule;
 use super::answer::answer_overridden;
+use super::one_way_contacts::forbids;
 
 /// The witness.
 impl RuleHooks {
@@ -15,6 +19,11 @@ impl RuleHooks {
     /// step (`docs/semantics.md`, "Stepping without the hooks"). The witness
     /// stays for [`check_witness_after`](Self::check_witness_after).
     pub(super) fn check_witness(&mut self, narrow_phase: &NarrowPhase) {
+        if let Some(key) = self.boundary.one_way_witness
+            && one_way_overridden(narrow_phase, key)
+        {
+            self.report_one_way_unhooked(key, "since their last step");
+        }
         let Some((key, rule)) = self.boundary.witness else {
             return;
         };
@@ -35,13 +44,50 @@ impl RuleHooks {
     /// rule, shows another answer in Rapier's graph.
     /// A step with the hooks that asks nothing (the bodies sleep) leaves
     /// the pair's contacts as the hook left them. Takes the witness.
-    pub(super) fn check_witness_after(&mut self, narrow_phase: &NarrowPhase, colliders: &ColliderSet) {
-        let Some((key, rule)) = self.boundary.witness.take() else {
-            return;
-        };
+    pub(super) fn check_witness_after(
+        &mut self,
+        narrow_phase: &NarrowPhase,
+        bodies: &RigidBodySet,
+        colliders: &ColliderSet,
+    ) {
+        let one_way = self.boundary.one_way_witness.take();
+        // This step's, for the next checks.
+        if std::mem::take(self.boundary.one_way_noting.get_mut()) {
+            self.boundary.one_way_witness = self
+                .boundary
+                .one_way_noted
+                .get_mut()
+                .unwrap_or_else(PoisonError::into_inner)
+                .take();
+        }
+        let witness = self.boundary.witness.take();
         if *self.boundary.stepped.get_mut() {
             return;
         }
+        if let Some(key) = one_way {
+            let (a, b) = key.colliders();
+            // Still a one-way pair the hook is asked about: a step with the
+            // hooks that updated its contacts asked them, so this one was
+            // not, or left them as the hook did.
+            let asked = |c: ColliderHandle| {
+                colliders.get(c).is_some_and(|co| {
+                    co.active_hooks().contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+                })
+            };
+            let rules = &self.decide.rules;
+            let one_way_of = |c| rules.one_way_of(bodies, colliders, c).is_some();
+            if colliders.contains(a)
+                && colliders.contains(b)
+                && (asked(a) || asked(b))
+                && (one_way_of(a) || one_way_of(b))
+                && one_way_overridden(narrow_phase, key)
+            {
+                self.report_one_way_unhooked(key, "between their `prepare` and `after_step`");
+            }
+        }
+        let Some((key, rule)) = witness else {
+            return;
+        };
         let (a, b) = key.colliders();
         let plan = &self.planned.plan;
         // Asked nothing, so not this pair either: still hooked with the
@@ -59,6 +105,29 @@ impl RuleHooks {
                  the rules refuse, and every rule the hook decides was dropped for that step"
             ));
         }
+    }
+
+    /// Notes `key`, a convex pair whose contacts the hook dropped for a
+    /// forbidden standing, as this step's one-way witness if it has none:
+    /// one lock a step at most.
+    pub(super) fn note_one_way_witness(&self, key: PairKey) {
+        if self.boundary.prepared && !self.boundary.one_way_noting.swap(true, Ordering::Relaxed) {
+            *self
+                .boundary
+                .one_way_noted
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner) = Some(key);
+        }
+    }
+
+    #[cold]
+    fn report_one_way_unhooked(&mut self, key: PairKey, when: &str) {
+        let (a, b) = key.colliders();
+        self.report_unhooked(&format!(
+            "Rapier stepped without the RuleHooks {when}: the pair of colliders {a:?} and {b:?}, \
+             blocked from one side of a one-way surface and let through by the hook, was given \
+             contacts the surface refuses, and every rule the hook decides was dropped for that step"
+        ));
     }
 
     /// Whether Rapier stepped with these hooks but without their `prepare`
@@ -102,4 +171,16 @@ fn witness_overridden(narrow_phase: &NarrowPhase, key: PairKey, rule: CollisionR
     narrow_phase
         .contact_pair(a, b)
         .is_some_and(|pair| answer_overridden(rule, pair))
+}
+
+/// Whether Rapier's graph shows the one-way witness with solver contacts in
+/// a manifold whose standing is forbidden: the hook drops them at every
+/// update (`docs/semantics.md`, "Stepping without the hooks").
+fn one_way_overridden(narrow_phase: &NarrowPhase, key: PairKey) -> bool {
+    let (a, b) = key.colliders();
+    narrow_phase.contact_pair(a, b).is_some_and(|pair| {
+        pair.manifolds()
+            .iter()
+            .any(|m| forbids(m.data.user_data) && !m.data.solver_contacts.is_empty())
+    })
 }

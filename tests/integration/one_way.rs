@@ -308,3 +308,105 @@ fn a_query_measures_a_surface_of_parts_where_its_source_is() {
         scene.world.remove_body(source);
     }
 }
+
+/// A world whose only rule is a one-way surface, stepped by Rapier without
+/// the hooks while a box passes up through the surface: after a step of
+/// its own (`world.step()` between two `hooks.step`), or inside the
+/// bare-pipeline bracket where the hooks should have been passed. The box's
+/// contacts, which the hook drops while the surface blocks from its side,
+/// are the witness: a debug build panics naming what happened and the fix,
+/// a release build says so in the step's stats. Stepped with the hooks
+/// throughout, the same scene says nothing (`docs/semantics.md`, "Stepping
+/// without the hooks").
+#[test]
+fn a_world_whose_only_rules_are_one_way_surfaces_stepped_without_the_hooks_is_caught() {
+    let build = || {
+        let mut scene = Scene::new();
+        let (platform, collider) = platform(&mut scene, 0.0, 0.5);
+        let from_below = thrown(&mut scene, 0.0, 1.5, 9.0);
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_one_way(platform, Some(OneWay::new(at(0.0, 1.0))));
+        (scene, hooks, collider, from_below)
+    };
+    // Steps with the hooks until the box is inside the platform, its
+    // contacts dropped by the hook.
+    let into_the_platform = |scene: &mut Scene, hooks: &mut RuleHooks, collider: ColliderHandle, body: RigidBodyHandle| {
+        for step in 0..60 {
+            hooks.step(&mut scene.world);
+            let box_collider = scene.world.bodies[body].colliders()[0];
+            let inside = scene
+                .world
+                .narrow_phase
+                .contact_pair(collider, box_collider)
+                .is_some_and(|pair| {
+                    pair.manifolds()
+                        .iter()
+                        .any(|m| !m.points.is_empty() && m.data.solver_contacts.is_empty())
+                });
+            if inside {
+                return step;
+            }
+        }
+        panic!("the box never went into the platform: y {}", scene.y(body));
+    };
+
+    let (mut scene, mut hooks, collider, body) = build();
+    into_the_platform(&mut scene, &mut hooks, collider, body);
+    for step in 0..240 {
+        hooks.step(&mut scene.world);
+        assert!(
+            !hooks.stats().stepped_without_hooks,
+            "step {step}: stepped with the hooks, said without: {:?}",
+            hooks.stats()
+        );
+    }
+    assert!(scene.y(body) > 3.5, "the box went up through: y {}", scene.y(body));
+
+    type Misstep = fn(&mut Scene, &mut RuleHooks);
+    let missteps: [(&str, Misstep, &str); 2] = [
+        (
+            "world.step() between two steps of the hooks",
+            |scene, hooks| {
+                scene.world.step();
+                hooks.step(&mut scene.world);
+            },
+            "since their last step",
+        ),
+        (
+            "world.step() inside the bare-pipeline bracket",
+            |scene, hooks| {
+                let world = &mut scene.world;
+                hooks.prepare(&world.bodies, &mut world.colliders);
+                hooks.freeze_manifolds(&world.narrow_phase);
+                hooks.wake_edited(&mut world.islands, &mut world.bodies);
+                world.step();
+                hooks.after_step(&world.narrow_phase, &world.bodies, &world.colliders);
+            },
+            "between their `prepare` and `after_step`",
+        ),
+    ];
+    for (what, misstep, says) in missteps {
+        let (mut scene, mut hooks, collider, body) = build();
+        let at_step = into_the_platform(&mut scene, &mut hooks, collider, body);
+        if !cfg!(debug_assertions) {
+            misstep(&mut scene, &mut hooks);
+            assert!(
+                hooks.stats().stepped_without_hooks,
+                "{what} (step {at_step}): went unnoticed: {:?}",
+                hooks.stats()
+            );
+            continue;
+        }
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            misstep(&mut scene, &mut hooks);
+        }));
+        let message = outcome
+            .err()
+            .and_then(|panic| panic.downcast::<String>().ok())
+            .unwrap_or_else(|| panic!("{what} (step {at_step}): went unnoticed"));
+        assert!(
+            message.contains(says) && message.contains("one-way") && message.contains("never `world.step()`"),
+            "{what}: the message names what happened and the fix: {message}"
+        );
+    }
+}

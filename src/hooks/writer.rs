@@ -355,7 +355,8 @@ impl RuleHooks {
              world was put in place of the one these hooks stepped. Call \
              `hooks.world_replaced()` after putting a loaded world in place (in Bevy, \
              `CollisionRules::world_replaced()` on the context), or those writes are read as \
-             the project's settings (docs/semantics.md, \"Saving and loading\")"
+             the project's settings (docs/semantics.md, \"Saving and loading\"). If these \
+             hooks step two worlds in turn, give each world its own `RuleHooks` instead"
         );
     }
 

@@ -281,6 +281,18 @@ struct Queued {
     touched: Vec<ColliderHandle>,
 }
 
+impl Planned {
+    /// Whether `collider` carries a hook flag the crate gave it: a rule the
+    /// hook decides, or contact modification (a one-way surface, a `Never`
+    /// manifold setting). Rapier turns its pairs' contact recycling off.
+    fn carries_hook(&self, collider: ColliderHandle) -> bool {
+        self.plan.hooks(collider)
+            || self.written.get(collider).is_some_and(|w| {
+                (w.wrote.hooks - w.own.hooks).contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+            })
+    }
+}
+
 /// The plan and what it was written into.
 struct Planned {
     /// Whether the planner may leave colliders unhooked (see
@@ -291,7 +303,7 @@ struct Planned {
     plan: Plan,
     /// The colliders and bodies the hooks watch.
     roster: Roster,
-    /// How many colliders the last plan hooked.
+    /// How many colliders carry a hook flag the crate gave them.
     hooked: usize,
     /// A plan was written or watched colliders went since `hooked` was
     /// counted: counted once, at the end of `prepare`.

@@ -38,7 +38,9 @@ pub enum Reach {
     /// solver groups or collision types: Rapier decides its pairs, with its
     /// contact recycling.
     Planned,
-    /// It carries the hook flag: the hook answers its pairs, which lose
+    /// It carries a hook flag the crate gave it: the hook answers its
+    /// pairs (a rule the hook decides), or modifies their contacts (a
+    /// one-way surface, a `ManifoldUpdate::Never` setting). Its pairs lose
     /// Rapier's contact recycling.
     Hooked,
 }
@@ -54,7 +56,7 @@ impl RuleHooks {
     #[must_use]
     pub fn reach(&self, collider: ColliderHandle) -> Reach {
         match self.planned.plan.colliders.get(collider) {
-            Some(plan) if plan.hooked() => Reach::Hooked,
+            Some(_) if self.planned.carries_hook(collider) => Reach::Hooked,
             Some(_) => Reach::Planned,
             None => Reach::Unreached,
         }

@@ -91,8 +91,10 @@ pub enum PlanCause {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct StepStats {
-    /// Colliders carrying the hook flag: their pairs lose Rapier's contact
-    /// recycling and are answered by the hook.
+    /// Colliders carrying a hook flag the crate gave them: those the hook
+    /// answers the pairs of, and those whose contacts it modifies (a
+    /// one-way surface, a `ManifoldUpdate::Never` setting). Their pairs
+    /// lose Rapier's contact recycling.
     pub hooked_colliders: usize,
     /// Colliders the hooks watch (those the rules reach, and every collider
     /// during a full pass).

@@ -173,7 +173,7 @@ impl RuleHooks {
             .planned
             .roster
             .colliders()
-            .filter(|&c| self.planned.plan.hooks(c))
+            .filter(|&c| self.planned.carries_hook(c))
             .count();
     }
 

@@ -7,7 +7,9 @@
 
 use super::rapier::control::KinematicCharacterController;
 use super::rapier::prelude::*;
-use super::rules::{CollisionRule, CollisionRuleSet, Node, OneWay, OneWayKind, RuleHooks, Until};
+use super::rules::{
+    CollisionRule, CollisionRuleSet, Node, OneWay, OneWayKind, Reach, RuleHooks, Until,
+};
 use super::scenes::Scene;
 use super::{at, box_mesh, cuboid, tilted};
 
@@ -352,6 +354,16 @@ fn a_world_whose_only_rules_are_one_way_surfaces_stepped_without_the_hooks_is_ca
 
     let (mut scene, mut hooks, collider, body) = build();
     into_the_platform(&mut scene, &mut hooks, collider, body);
+    // Found by a platformer built from the docs: the surface's pairs lose
+    // Rapier's contact recycling, as any with a hook flag, and the stats
+    // and `reach` said it was not hooked.
+    assert_eq!(hooks.reach(collider), Reach::Hooked, "the surface carries a hook flag");
+    assert_eq!(
+        hooks.stats().hooked_colliders,
+        1,
+        "the surface is counted as hooked, the box is not: {:?}",
+        hooks.stats()
+    );
     for step in 0..240 {
         hooks.step(&mut scene.world);
         assert!(

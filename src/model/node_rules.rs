@@ -31,6 +31,7 @@ impl CollisionRuleSet {
     ///
     /// If a group was not created by this rule set (nor is built in): a group
     /// of another rule set means nothing here.
+    #[track_caller]
     pub fn set_group(&mut self, node: impl Into<Node>, group: Option<CollisionGroup>) {
         self.check_groups(group.as_slice());
         let node = node.into();

@@ -126,6 +126,7 @@ impl CollisionRuleSet {
     ///
     /// If a group was not created by this rule set (nor is built in): a group
     /// of another rule set means nothing here.
+    #[track_caller]
     pub fn set_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup, rule: CollisionRule) {
         self.check_groups(&[a, b]);
         self.groups.set(a, b, rule);
@@ -163,6 +164,7 @@ impl CollisionRuleSet {
     ///
     /// If a group was not created by this rule set (nor is built in): a group
     /// of another rule set means nothing here.
+    #[track_caller]
     pub fn set_group_rules_in_set(
         &mut self,
         set: &[CollisionGroup],
@@ -199,6 +201,7 @@ impl CollisionRuleSet {
     ///
     /// If a group was not created by this rule set (nor is built in): a group
     /// of another rule set means nothing here.
+    #[track_caller]
     pub fn set_group_rules_with_set(
         &mut self,
         group: CollisionGroup,
@@ -237,6 +240,7 @@ impl CollisionRuleSet {
     ///
     /// If a group was not created by this rule set (nor is built in): a group
     /// of another rule set means nothing here.
+    #[track_caller]
     pub fn set_group_rules_between_sets(
         &mut self,
         a: &[CollisionGroup],
@@ -314,12 +318,15 @@ impl CollisionRuleSet {
 
 impl CollisionRuleSet {
     /// Refuses groups this rule set did not create: a caller bug.
+    #[track_caller]
     pub(super) fn check_groups(&self, groups: &[CollisionGroup]) {
         let count = self.groups.group_count();
         for g in groups {
             assert!(
                 g.id() < count,
-                "{g:?} was not created by this rule set ({count} groups exist)"
+                "{g:?} was not created by this rule set ({count} groups exist): use the groups \
+                 `create_group` of this rule set returned (a group of another rule set names \
+                 nothing here)"
             );
         }
     }

@@ -77,8 +77,9 @@ fn errors_display_lowercase_and_name_the_handles() {
     assert!(boxed.source().is_none());
 }
 
+/// The panic names the fix, at the caller's line (`#[track_caller]`).
 #[test]
-#[should_panic(expected = "was not created by this rule set")]
+#[should_panic(expected = "was not created by this rule set (2 groups exist): use the groups `create_group` of this rule set returned")]
 fn a_group_of_another_rule_set_is_a_caller_bug() {
     let mut other = CollisionRuleSet::default();
     for _ in 0..3 {

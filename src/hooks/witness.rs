@@ -10,6 +10,7 @@ use super::{PairKey, RuleHooks};
 use super::super::CollisionRule;
 use super::answer::answer_overridden;
 use super::one_way_contacts::forbids;
+use super::super::model::Named;
 
 /// The witness.
 impl RuleHooks {
@@ -29,9 +30,10 @@ impl RuleHooks {
         };
         if witness_overridden(narrow_phase, key, rule) {
             let (a, b) = key.colliders();
+            let (a, b) = (Named(a.into()), Named(b.into()));
             self.report_unhooked(&format!(
                 "Rapier stepped without the RuleHooks since their last step: the {rule:?} pair \
-                 of colliders {a:?} and {b:?} was given contacts and impulses the rules refuse, \
+                 of {a} and {b} was given contacts and impulses the rules refuse, \
                  and every rule the hook decides was dropped for that step"
             ));
         }
@@ -99,9 +101,10 @@ impl RuleHooks {
             && (plan.hooks(a) || plan.hooks(b))
             && witness_overridden(narrow_phase, key, rule)
         {
+            let (a, b) = (Named(a.into()), Named(b.into()));
             self.report_unhooked(&format!(
                 "Rapier stepped without the RuleHooks between their `prepare` and `after_step`: \
-                 the {rule:?} pair of colliders {a:?} and {b:?} was given contacts and impulses \
+                 the {rule:?} pair of {a} and {b} was given contacts and impulses \
                  the rules refuse, and every rule the hook decides was dropped for that step"
             ));
         }
@@ -123,8 +126,9 @@ impl RuleHooks {
     #[cold]
     fn report_one_way_unhooked(&mut self, key: PairKey, when: &str) {
         let (a, b) = key.colliders();
+        let (a, b) = (Named(a.into()), Named(b.into()));
         self.report_unhooked(&format!(
-            "Rapier stepped without the RuleHooks {when}: the pair of colliders {a:?} and {b:?}, \
+            "Rapier stepped without the RuleHooks {when}: the pair of {a} and {b}, \
              blocked from one side of a one-way surface and let through by the hook, was given \
              contacts the surface refuses, and every rule the hook decides was dropped for that step"
         ));

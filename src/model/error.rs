@@ -61,7 +61,7 @@ pub enum RuleError {
 /// A node as a user names it in a message: "body 3", "collider 5", with the
 /// generation of a reused slot ("body 3, generation 2"). `Debug` keeps the
 /// handles.
-struct Named(Node);
+pub(crate) struct Named(pub(crate) Node);
 
 impl std::fmt::Display for Named {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

@@ -50,6 +50,7 @@ pub(crate) mod written;
 
 pub use ending::Until;
 pub use error::RuleError;
+pub(crate) use error::Named;
 pub use one_way::{OneWay, OneWayKind};
 pub use group::CollisionGroup;
 pub use group_table::GroupTable;

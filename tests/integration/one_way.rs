@@ -417,7 +417,10 @@ fn a_world_whose_only_rules_are_one_way_surfaces_stepped_without_the_hooks_is_ca
             .and_then(|panic| panic.downcast::<String>().ok())
             .unwrap_or_else(|| panic!("{what} (step {at_step}): went unnoticed"));
         assert!(
-            message.contains(says) && message.contains("one-way") && message.contains("never `world.step()`"),
+            message.contains(says)
+                && message.contains("one-way")
+                && message.contains("the pair of collider 1 and collider 2")
+                && message.contains("never `world.step()`"),
             "{what}: the message names what happened and the fix: {message}"
         );
     }

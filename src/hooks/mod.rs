@@ -225,8 +225,8 @@ struct Boundary {
     /// different one means the project removed, added or moved objects,
     /// whose pairs the after-step sweep must look at even if no body moved.
     census: Census,
-    /// A hooked pair the hook answered "no contacts" or "no response" in
-    /// the last step, with its rule: if Rapier's graph shows another answer
+    /// A hooked pair the hook answered "no pair", "no contacts" or "no
+    /// response" in the last step, with its rule: if Rapier's graph shows another answer
     /// before the next step, or after a step that asked the hooks nothing,
     /// Rapier stepped without the hooks.
     witness: Option<(PairKey, CollisionRule)>,

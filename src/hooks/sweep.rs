@@ -165,7 +165,10 @@ impl RuleHooks {
                 && witness.is_none()
                 && state.answered_in(step)
                 && state.manifold == ManifoldUpdate::ByRule
-                && matches!(state.rule(), CollisionRule::NoContacts | CollisionRule::NoResponse)
+                && matches!(
+                    state.rule(),
+                    CollisionRule::NoPair | CollisionRule::NoContacts | CollisionRule::NoResponse
+                )
             {
                 witness = Some((key, state.rule()));
             }

@@ -15,8 +15,8 @@ use super::super::model::Named;
 /// The witness.
 impl RuleHooks {
     /// Whether Rapier stepped without these hooks since their last step: the
-    /// witness pair (one hooked pair the hook answered "no contacts" or "no
-    /// response") shows another answer in Rapier's graph. One look-up per
+    /// witness pair (one hooked pair the hook answered "no pair", "no
+    /// contacts" or "no response") shows another answer in Rapier's graph. One look-up per
     /// step (`docs/semantics.md`, "Stepping without the hooks"). The witness
     /// stays for [`check_witness_after`](Self::check_witness_after).
     pub(super) fn check_witness(&mut self, narrow_phase: &NarrowPhase) {

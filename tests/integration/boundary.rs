@@ -376,11 +376,15 @@ fn stepping_rapier_without_the_hooks_inside_their_bracket_is_caught_at_after_ste
 #[test]
 fn stepping_rapier_without_the_hooks_or_their_prepare_is_caught_at_the_next_step() {
     use super::{cube, slab};
-    use CollisionRule::{NoContacts, NoResponse};
+    use CollisionRule::{NoContacts, NoPair, NoResponse};
     type Misstep = fn(&mut PhysicsWorld, &RuleHooks);
     // (what happened, the rule (`None`: a one-way ground, the world's only
     // rule), the step, what the message says)
-    let cases: [(&str, Option<CollisionRule>, Misstep, &str); 4] = [
+    let cases: [(&str, Option<CollisionRule>, Misstep, &str); 5] = [
+        // Found by a robot arm built from the docs: a hooked NoPair pair
+        // (a link and its neighbour) was never the witness, and one
+        // `world.step()` threw the arm apart unseen.
+        ("world.step(), NoPair", Some(NoPair), |w, _| w.step(), "never `world.step()`"),
         ("world.step(), NoContacts", Some(NoContacts), |w, _| w.step(), "never `world.step()`"),
         ("world.step(), NoResponse", Some(NoResponse), |w, _| w.step(), "never `world.step()`"),
         (

@@ -212,3 +212,61 @@ fn the_walk_of_impulse_joints_stops_at_bodies_that_are_not_dynamic() -> Result<(
     assert!(y > 0.2, "the crate rests on the ground: y = {y}");
     Ok(())
 }
+
+/// The two robot recipes of `docs/semantics.md` (stage 3), found by a
+/// robot arm built from the docs: an entry about the base's collider sets
+/// the fixed base apart from the table and no link; entries about the
+/// links' colliders set apart neighbouring links only, with the parent map
+/// in place. Resolved for every pair, in both orders.
+#[test]
+fn robot_recipes_name_colliders_to_reach_one_pair_only() -> Result<(), RuleError> {
+    let mut world = PhysicsWorld::new();
+    let table = world.insert_body(RigidBodyBuilder::fixed());
+    let table_collider = world.insert_collider(cuboid(2.0, 0.05, 2.0), Some(table));
+    let base = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, 0.1)));
+    let base_collider = world.insert_collider(cuboid(0.1, 0.1, 0.1), Some(base));
+    let mut parent = base;
+    let mut links = Vec::new();
+    for i in 1..=4 {
+        let link =
+            world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 0.1 + 0.3 * i as f32)));
+        let collider = world.insert_collider(cuboid(0.05, 0.2, 0.05), Some(link));
+        world.multibody_joints.insert(parent, link, joint(), true);
+        links.push(collider);
+        parent = link;
+    }
+    let last = world.colliders[links[3]].parent().expect("a link body");
+    let mut rules = CollisionRuleSet::default();
+    assert_eq!(rules.set_parents_from_multibody(&world.multibody_joints, last)?, 4);
+    let arm = rules.create_group();
+    rules.set_group(base, Some(arm));
+    rules.set_specific(base_collider, table_collider, CollisionRule::NoPair);
+    for pair in links.windows(2) {
+        rules.set_specific(pair[0], pair[1], CollisionRule::NoPair);
+    }
+    let resolve = |a, b| {
+        let (ab, ba) = (
+            rules.resolve(&world.bodies, &world.colliders, a, b),
+            rules.resolve(&world.bodies, &world.colliders, b, a),
+        );
+        assert_eq!(ab, ba, "both orders");
+        ab
+    };
+    assert_eq!(resolve(base_collider, table_collider), CollisionRule::NoPair);
+    for (i, &link) in links.iter().enumerate() {
+        assert_eq!(
+            resolve(link, table_collider),
+            CollisionRule::Normal,
+            "link {i} meets the table"
+        );
+        for (j, &other) in links.iter().enumerate().skip(i + 1) {
+            let expected = if j == i + 1 {
+                CollisionRule::NoPair
+            } else {
+                CollisionRule::Normal
+            };
+            assert_eq!(resolve(link, other), expected, "links {i} and {j}");
+        }
+    }
+    Ok(())
+}

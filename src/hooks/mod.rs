@@ -284,12 +284,23 @@ struct Queued {
 impl Planned {
     /// Whether `collider` carries a hook flag the crate gave it: a rule the
     /// hook decides, or contact modification (a one-way surface, a `Never`
-    /// manifold setting). Rapier turns its pairs' contact recycling off.
-    fn carries_hook(&self, collider: ColliderHandle) -> bool {
+    /// manifold setting; `modifies`: the rules have either). Rapier turns
+    /// its pairs' contact recycling off.
+    fn carries_hook(&self, collider: ColliderHandle, modifies: bool) -> bool {
         self.plan.hooks(collider)
-            || self.written.get(collider).is_some_and(|w| {
-                (w.wrote.hooks - w.own.hooks).contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
-            })
+            || modifies
+                && self.written.get(collider).is_some_and(|w| {
+                    (w.wrote.hooks - w.own.hooks).contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+                })
+    }
+}
+
+impl RuleHooks {
+    /// Whether the crate may give colliders contact modification (see
+    /// [`Planned::carries_hook`]): one read, so that counting the hooked
+    /// colliders of a world without one-way surfaces costs no more.
+    fn modifies_contacts(&self) -> bool {
+        self.decide.rules.uses_one_ways() || !self.planned.modifying.is_empty()
     }
 }
 

@@ -56,7 +56,9 @@ impl RuleHooks {
     #[must_use]
     pub fn reach(&self, collider: ColliderHandle) -> Reach {
         match self.planned.plan.colliders.get(collider) {
-            Some(_) if self.planned.carries_hook(collider) => Reach::Hooked,
+            Some(_) if self.planned.carries_hook(collider, self.modifies_contacts()) => {
+                Reach::Hooked
+            }
             Some(_) => Reach::Planned,
             None => Reach::Unreached,
         }

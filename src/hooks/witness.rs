@@ -114,7 +114,13 @@ impl RuleHooks {
     /// forbidden standing, as this step's one-way witness if it has none:
     /// one lock a step at most.
     pub(super) fn note_one_way_witness(&self, key: PairKey) {
-        if self.boundary.prepared && !self.boundary.one_way_noting.swap(true, Ordering::Relaxed) {
+        // A load first: the swap's write is taken once a step, not at every
+        // dropped manifold.
+        let noting = &self.boundary.one_way_noting;
+        if self.boundary.prepared
+            && !noting.load(Ordering::Relaxed)
+            && !noting.swap(true, Ordering::Relaxed)
+        {
             *self
                 .boundary
                 .one_way_noted

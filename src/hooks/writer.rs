@@ -169,11 +169,12 @@ impl RuleHooks {
     }
 
     pub(super) fn count_hooked(&mut self) {
+        let modifies = self.modifies_contacts();
         self.planned.hooked = self
             .planned
             .roster
             .colliders()
-            .filter(|&c| self.planned.carries_hook(c))
+            .filter(|&c| self.planned.carries_hook(c, modifies))
             .count();
     }
 

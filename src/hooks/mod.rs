@@ -226,9 +226,9 @@ struct Boundary {
     /// whose pairs the after-step sweep must look at even if no body moved.
     census: Census,
     /// A hooked pair the hook answered "no pair", "no contacts" or "no
-    /// response" in the last step, with its rule: if Rapier's graph shows another answer
-    /// before the next step, or after a step that asked the hooks nothing,
-    /// Rapier stepped without the hooks.
+    /// response" in the last step, with its rule: if Rapier's graph shows
+    /// another answer before the next step, or after a step that asked the
+    /// hooks nothing, Rapier stepped without the hooks.
     witness: Option<(PairKey, CollisionRule)>,
     /// A convex pair with a one-way surface whose contacts the hook dropped
     /// in this step, its manifold's standing forbidden (the first the hook

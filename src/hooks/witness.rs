@@ -16,9 +16,11 @@ use super::super::model::Named;
 impl RuleHooks {
     /// Whether Rapier stepped without these hooks since their last step: the
     /// witness pair (one hooked pair the hook answered "no pair", "no
-    /// contacts" or "no response") shows another answer in Rapier's graph. One look-up per
-    /// step (`docs/semantics.md`, "Stepping without the hooks"). The witness
-    /// stays for [`check_witness_after`](Self::check_witness_after).
+    /// contacts" or "no response") shows another answer in Rapier's graph,
+    /// or the one-way witness solver contacts its surface refuses. One
+    /// look-up each per step (`docs/semantics.md`, "Stepping without the
+    /// hooks"). The witnesses stay for
+    /// [`check_witness_after`](Self::check_witness_after).
     pub(super) fn check_witness(&mut self, narrow_phase: &NarrowPhase) {
         if let Some(key) = self.boundary.one_way_witness
             && one_way_overridden(narrow_phase, key)

@@ -121,7 +121,15 @@ impl RuleHooks {
         if self.idle(colliders) {
             return;
         }
-        if full != self.planned.plan.full && (full.is_some() || self.planned.plan.full.is_some()) {
+        // The hooks' own reasons to hook everything came or went. A plan's
+        // full pass for the default groups is the plan's own, made again
+        // only by the edits that change it: not one of these reasons.
+        let hooks_reason = self
+            .planned
+            .plan
+            .full
+            .filter(|&reason| reason != FullPass::DefaultGroups);
+        if full != hooks_reason {
             self.queued.replan.get_or_insert(PlanCause::HookSettings);
         }
         let mut changed = self.watch_edits(bodies, colliders);

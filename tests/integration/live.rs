@@ -763,3 +763,55 @@ fn a_one_way_given_to_a_fixed_cube_reaches_its_pair_at_once() {
     })
     .unwrap();
 }
+
+/// Found by a large level built from the docs: a plan's full pass for the
+/// default groups (a group's rule with `DEFAULT_KINEMATIC`) was taken for
+/// the hooks' own reasons to hook everything, which it never equals, so
+/// every step planned every collider again for "hook settings". A world
+/// that changes every step under such rules is what a whole plan every
+/// step makes of it, and its whole plans name the changes that make them
+/// (a new class, a class emptied), never the hooks' settings.
+#[test]
+fn default_group_rules_in_a_world_that_changes_every_step_are_kept_by_the_upkeep() {
+    use CollisionRule::{NoPair, NoResponse};
+    // Bodies: 0 the ground, 1 to 5 the cubes below (kinds: 0 dynamic, 1
+    // kinematic, 2 fixed), each round's cube after them. Groups: 0 and 1
+    // the default dynamic and kinematic ones, 2 and 3 the rule set's own.
+    let cubes = [(-1.0, 0.6, 0), (0.0, 0.6, 2), (1.0, 0.6, 1), (0.5, 1.6, 0), (-0.5, 2.0, 2)];
+    let mut edits = vec![
+        Edit::GroupRule(2, 1, NoPair),
+        Edit::GroupRule(3, 0, NoResponse),
+        // A fixed pickup in group 2, a dynamic box in group 3: the
+        // classes the rounds' cubes join.
+        Edit::Group(2, Some(2)),
+        Edit::Group(1, Some(3)),
+        Edit::Step(1),
+    ];
+    for round in 0..16usize {
+        let x = -1.2 + 0.15 * round as f32;
+        let y = 0.6 + 0.4 * (round % 4) as f32;
+        let (kind, group) = if round % 2 == 0 { (0, 3) } else { (2, 2) };
+        edits.push(Edit::AddCube(x, y, kind));
+        edits.push(Edit::Group(6 + round, Some(group)));
+        if round >= 3 {
+            edits.push(Edit::RemoveBody(6 + round - 3));
+        }
+        edits.push(Edit::Step(1));
+    }
+    if let Err(e) = upkeep_sees_what_a_full_pass_sees(&cubes, &edits) {
+        panic!("{e}");
+    }
+    let mut run = Run::new(&cubes, true, false);
+    let mut steps = 0;
+    for edit in &edits {
+        run.apply(edit);
+        if matches!(edit, Edit::Step(_)) {
+            let stats = run.hooks.stats();
+            assert_eq!(stats.full_pass, Some(super::rules::FullPass::DefaultGroups), "{stats:?}");
+            if steps > 0 {
+                assert_ne!(stats.full_plan, Some(super::rules::PlanCause::HookSettings), "{stats:?}");
+            }
+            steps += 1;
+        }
+    }
+}

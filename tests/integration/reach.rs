@@ -343,6 +343,19 @@ fn full_passes_say_why_they_run() {
         } else {
             assert_eq!(stats.watched_colliders, 1, "{name}: {stats:?}");
         }
+        // Found by a large level built from the docs: a plan's full pass
+        // for the default groups differed from the hooks' own reasons
+        // (none), so every step planned every collider again.
+        for step in 1..4 {
+            hooks.step(&mut scene.world);
+            let stats = hooks.stats();
+            assert_eq!(stats.full_pass, expected, "{name}, step {step}: {stats:?}");
+            assert_eq!(
+                (stats.full_plan, stats.planned_colliders),
+                (None, 0),
+                "{name}, step {step}: nothing changed, nothing planned: {stats:?}"
+            );
+        }
     }
 }
 
@@ -788,4 +801,46 @@ fn scene_and_hooks(oracle: bool) -> (Scene, RuleHooks) {
     let mut hooks = RuleHooks::default();
     hooks.set_exhaustive(oracle);
     (Scene::new(), hooks)
+}
+
+/// The README's advice for a group of fixed colliders (coins) that should
+/// not meet the level's other fixed colliders, checked: both entries keep
+/// every collider native (Rapier's type test sets the coins apart); the
+/// `DEFAULT_KINEMATIC` entry alone gives the default groups settings of
+/// their own (found by a large level built from the docs, at many times
+/// Rapier's step). Either way the coin and the floor never meet.
+#[test]
+fn a_group_of_fixed_colliders_set_apart_from_the_level_says_both_entries() {
+    for (both, expected) in [(true, None), (false, Some(FullPass::DefaultGroups))] {
+        let mut scene = Scene::new();
+        let body = scene
+            .world
+            .insert_body(RigidBodyBuilder::fixed().translation(at(2.0, 0.0)));
+        let coin = scene.world.insert_collider(cuboid(0.3, 0.3, 0.3), Some(body));
+        let mut hooks = RuleHooks::default();
+        let coins = hooks.rules_mut().create_group();
+        hooks.rules_mut().set_group(body, Some(coins));
+        hooks
+            .rules_mut()
+            .set_group_rule(coins, CollisionGroup::DEFAULT_KINEMATIC, NoPair);
+        if both {
+            hooks.rules_mut().set_group_rule(coins, coins, NoPair);
+        }
+        for _ in 0..5 {
+            hooks.step(&mut scene.world);
+        }
+        let stats = hooks.stats();
+        assert_eq!(stats.full_pass, expected, "both entries: {both}: {stats:?}");
+        let met = scene
+            .world
+            .narrow_phase
+            .contact_pair(coin, scene.floor)
+            .is_some_and(|pair| pair.manifolds().iter().any(|m| !m.points.is_empty()));
+        assert!(!met, "both entries: {both}: the coin met the floor");
+        assert_eq!(
+            hooks.pair_rule(&scene.world, coin, scene.floor),
+            None,
+            "both entries: {both}: no live pair"
+        );
+    }
 }

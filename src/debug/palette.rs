@@ -80,7 +80,8 @@ pub struct RulePalette {
     pub defer: RuleColor,
     /// A collider the planner gave Rapier groups or types ([`Reach::Planned`]): teal.
     pub planned: RuleColor,
-    /// A collider that carries the hook ([`Reach::Hooked`]): violet, a hue
+    /// A collider that carries a hook flag the crate gave it (it is hooked,
+    /// or a one-way surface: [`Reach::Hooked`]): violet, a hue
     /// far from Rapier's own collider colours (red to orange).
     pub hooked: RuleColor,
     /// The mark of a pair whose rule was given with `set_pair_rule`: yellow.

@@ -19,8 +19,9 @@ use super::{RuleDebugFilter, RuleLabelBackend, RulePalette};
 /// - **tints**: the shape of a collider the rules reach is drawn in the
 ///   palette's hue for [`Reach::Planned`](super::super::Reach::Planned)
 ///   (teal: the planner wrote Rapier groups) or
-///   [`Reach::Hooked`](super::super::Reach::Hooked) (violet: the hook answers
-///   its pairs), keeping Rapier's lightness, so sleeping colliders stay
+///   [`Reach::Hooked`](super::super::Reach::Hooked) (violet: it carries a hook
+///   flag the crate gave it, the hook answering its pairs or modifying
+///   their contacts), keeping Rapier's lightness, so sleeping colliders stay
 ///   dim; an unreached collider keeps Rapier's colour;
 /// - **pairs**: a line between the centres of the two colliders of each
 ///   live pair the rules reach, in its rule's colour (`NoContacts` and

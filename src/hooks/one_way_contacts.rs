@@ -102,6 +102,11 @@ impl RuleHooks {
         let mut clear = false;
         for (side, surface) in surfaces.into_iter().enumerate() {
             let Some((one_way, normal, arriving)) = surface else {
+                // A side that is no surface (any more) has no standing: a
+                // stale one would read as forbidden to the witness while
+                // this side lets the contacts through, and would block at
+                // once if the side became a surface again.
+                set_standing(&mut user_data, side, Standing::Unknown);
                 continue;
             };
             // The manifold's normal points from the first collider to the
@@ -151,7 +156,8 @@ impl RuleHooks {
 }
 
 /// Whether a manifold's `user_data` holds a forbidden standing for either
-/// side: the hook drops that manifold's solver contacts at every update.
+/// side: the hook drops that manifold's solver contacts at every update
+/// (a side that is no surface has its standing cleared at each update).
 pub(super) fn forbids(user_data: u32) -> bool {
     [0, 1].into_iter().any(|side| standing(user_data, side) == Standing::Forbidden)
 }

@@ -425,3 +425,60 @@ fn a_world_whose_only_rules_are_one_way_surfaces_stepped_without_the_hooks_is_ca
         );
     }
 }
+
+/// Found by a review of the one-way witness: two one-way surfaces meet (a
+/// deck, and a ball that is a surface too), the ball's surface is taken
+/// away while the deck blocks it, and the project steps a bare pipeline
+/// several times a bracket (as bevy_rapier's substeps do). The ball's side
+/// kept its forbidden standing, which the witness read as the hook's drop
+/// while the deck let the contacts through: a correct run was accused.
+#[test]
+fn a_surface_taken_away_leaves_no_standing_that_accuses_a_correct_run() {
+    fn run(speed: f32, steps_per_bracket: usize) -> bool {
+        let mut world = PhysicsWorld::new();
+        let deck = world.insert_body(RigidBodyBuilder::fixed());
+        let surface = world.insert_collider(cuboid(2.0, 0.1, 2.0), Some(deck));
+        let body = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .translation(at(0.0, -0.45))
+                .linvel(at(0.0, speed)),
+        );
+        let ball = world.insert_collider(ColliderBuilder::ball(0.3), Some(body));
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_one_way(deck, Some(OneWay::new(at(0.0, 1.0))));
+        hooks.rules_mut().set_one_way(body, Some(OneWay::new(at(0.0, -1.0))));
+        let mut taken_away = false;
+        for _ in 0..40 {
+            let w = &mut world;
+            hooks.prepare(&w.bodies, &mut w.colliders);
+            hooks.freeze_manifolds(&w.narrow_phase);
+            hooks.wake_edited(&mut w.islands, &mut w.bodies);
+            for _ in 0..steps_per_bracket {
+                w.step_with_events(&hooks, &());
+            }
+            hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
+            assert!(!hooks.stats().stepped_without_hooks, "accused: {:?}", hooks.stats());
+            let touching = w
+                .narrow_phase
+                .contact_pair(surface, ball)
+                .is_some_and(|pair| pair.manifolds().iter().any(|m| !m.points.is_empty()));
+            if !taken_away && touching {
+                hooks.rules_mut().set_one_way(body, None);
+                taken_away = true;
+            }
+        }
+        taken_away
+    }
+    let mut runs = 0;
+    for steps_per_bracket in [1, 2, 3, 4] {
+        for i in 0..40 {
+            let speed = 2.5 + i as f32 * 0.1;
+            let outcome = std::panic::catch_unwind(|| run(speed, steps_per_bracket));
+            match outcome {
+                Ok(taken_away) => runs += usize::from(taken_away),
+                Err(_) => panic!("{steps_per_bracket} steps a bracket at {speed} m/s: accused"),
+            }
+        }
+    }
+    assert!(runs > 100, "the surface was taken away in contact in {runs} runs");
+}

@@ -341,6 +341,7 @@ impl RuleHooks {
             return;
         }
         let now = Room::of_world(colliders, |h, c| self.own_settings(h, c));
+        self.stats.read_every_collider = true;
         // Bits are taken from the room: a plan made in another room would
         // take others.
         if now == room {

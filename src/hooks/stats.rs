@@ -133,6 +133,13 @@ pub struct StepStats {
     /// whenever colliders come or go; see
     /// [`RuleHooks::project_settings_changed`](super::RuleHooks::project_settings_changed)).
     pub shares_project_bits: bool,
+    /// Whether this step read every collider's own settings again, because
+    /// colliders came or went while the plan shares bits with the project
+    /// (`shares_project_bits`): one pass over Rapier's whole collider set,
+    /// the one part of a changing world's cost that grows with the world
+    /// (about 10 to 17 ns a collider; `docs/performance.md`, "Why is my
+    /// world slow").
+    pub read_every_collider: bool,
     /// Whether the hooks looked up hooked pairs in Rapier's graph after the
     /// step. They skip it when no body was awake before or after the step
     /// and nothing changed (a resting pair cannot have ended).

@@ -821,3 +821,31 @@ fn a_step_that_removes_as_many_colliders_as_it_adds_is_seen_once_told() {
         "not told, the plan keeps bits the new cube's filter leaves out: y = {y}"
     );
 }
+
+/// Found by a large level built from the docs: a step after colliders came
+/// or went read every collider's settings again, which nothing in the
+/// stats said. `read_every_collider` says it, at that step only.
+#[test]
+fn the_stats_say_when_colliders_coming_or_going_read_every_collider() {
+    let mut scene = Scene::new();
+    let (a, _) = scene.cube(0.0, 0.5);
+    let (b, _) = scene.cube(3.0, 0.5);
+    let mut hooks = RuleHooks::default();
+    let rules = hooks.rules_mut();
+    let (g, h) = (rules.create_group(), rules.create_group());
+    rules.set_group_rule(g, h, NoPair);
+    rules.set_group(a, Some(g));
+    rules.set_group(b, Some(h));
+    hooks.step(&mut scene.world);
+    assert!(hooks.stats().shares_project_bits, "{:?}", hooks.stats());
+    hooks.step(&mut scene.world);
+    assert!(!hooks.stats().read_every_collider, "nothing came: {:?}", hooks.stats());
+    let (_, added) = scene.cube(6.0, 3.0);
+    hooks.step(&mut scene.world);
+    assert!(hooks.stats().read_every_collider, "a cube came: {:?}", hooks.stats());
+    hooks.step(&mut scene.world);
+    assert!(!hooks.stats().read_every_collider, "nothing came: {:?}", hooks.stats());
+    scene.world.remove_collider(added);
+    hooks.step(&mut scene.world);
+    assert!(hooks.stats().read_every_collider, "a cube went: {:?}", hooks.stats());
+}

@@ -728,21 +728,29 @@ fn layers_moved_into_the_rules_step_bit_for_bit_as_the_layers() {
 /// project says so (`told`) or not, and the world steps 60 times. Returns
 /// whether the plan shared its bits with the project, and where the cube
 /// came to rest.
-fn boxes_apart(
-    told: bool,
-    before: impl Fn(&mut Scene) -> (RigidBodyHandle, ColliderHandle),
-    edit: impl Fn(&mut Scene, (RigidBodyHandle, ColliderHandle)) -> RigidBodyHandle,
-) -> (bool, f32) {
-    let mut scene = Scene::new();
+/// Two cubes on the floor, 3 m apart, in two groups set apart (`NoPair`):
+/// a plan whose groups take Rapier bits, shared with the project's
+/// settings.
+fn two_boxes_in_groups_apart(scene: &mut Scene) -> RuleHooks {
     let (a, _) = scene.cube(0.0, 0.5);
     let (b, _) = scene.cube(3.0, 0.5);
-    let extra = before(&mut scene);
     let mut hooks = RuleHooks::default();
     let rules = hooks.rules_mut();
     let (g, h) = (rules.create_group(), rules.create_group());
     rules.set_group_rule(g, h, NoPair);
     rules.set_group(a, Some(g));
     rules.set_group(b, Some(h));
+    hooks
+}
+
+fn boxes_apart(
+    told: bool,
+    before: impl Fn(&mut Scene) -> (RigidBodyHandle, ColliderHandle),
+    edit: impl Fn(&mut Scene, (RigidBodyHandle, ColliderHandle)) -> RigidBodyHandle,
+) -> (bool, f32) {
+    let mut scene = Scene::new();
+    let mut hooks = two_boxes_in_groups_apart(&mut scene);
+    let extra = before(&mut scene);
     hooks.step(&mut scene.world);
     let shares = hooks.stats().shares_project_bits;
     let watched = edit(&mut scene, extra);
@@ -828,14 +836,7 @@ fn a_step_that_removes_as_many_colliders_as_it_adds_is_seen_once_told() {
 #[test]
 fn the_stats_say_when_colliders_coming_or_going_read_every_collider() {
     let mut scene = Scene::new();
-    let (a, _) = scene.cube(0.0, 0.5);
-    let (b, _) = scene.cube(3.0, 0.5);
-    let mut hooks = RuleHooks::default();
-    let rules = hooks.rules_mut();
-    let (g, h) = (rules.create_group(), rules.create_group());
-    rules.set_group_rule(g, h, NoPair);
-    rules.set_group(a, Some(g));
-    rules.set_group(b, Some(h));
+    let mut hooks = two_boxes_in_groups_apart(&mut scene);
     hooks.step(&mut scene.world);
     assert!(hooks.stats().shares_project_bits, "{:?}", hooks.stats());
     hooks.step(&mut scene.world);

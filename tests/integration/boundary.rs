@@ -7,6 +7,7 @@ use super::rules::{CollisionRule, ManifoldUpdate, OneWay, RuleHooks, WorldRef};
 use super::{at, cuboid};
 
 use super::scenes::Events;
+use super::world::panic_message;
 
 /// A fast CCD ball crossing a thick slab, then stopped by a thin wall just
 /// past it: the wall's impact makes the CCD split the step into substeps
@@ -256,12 +257,9 @@ fn a_forgotten_call_fails_loudly_and_names_it() {
         for _ in 0..3 {
             hooks.step(&mut scene.world);
         }
-        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let message = panic_message(|| {
             act(&mut scene, &mut hooks);
-        }));
-        let message = outcome
-            .err()
-            .and_then(|panic| panic.downcast::<String>().ok())
+        })
             .unwrap_or_else(|| panic!("{misuse}: no panic"));
         assert!(
             message.contains(names),
@@ -349,12 +347,9 @@ fn stepping_rapier_without_the_hooks_inside_their_bracket_is_caught_at_after_ste
             assert!(!hooks.stats().stepped_without_hooks, "{rule:?}: said for its step only");
             continue;
         }
-        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let message = panic_message(|| {
             bracket(&mut world, &mut hooks, false);
-        }));
-        let message = outcome
-            .err()
-            .and_then(|panic| panic.downcast::<String>().ok())
+        })
             .unwrap_or_else(|| panic!("{rule:?}: went unnoticed"));
         assert!(
             message.contains("between their `prepare` and `after_step`")
@@ -442,12 +437,9 @@ fn stepping_rapier_without_the_hooks_or_their_prepare_is_caught_at_the_next_step
             assert!(!hooks.stats().stepped_without_hooks, "{name}: said for its step only");
             continue;
         }
-        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let message = panic_message(|| {
             hooks.step(&mut world);
-        }));
-        let message = outcome
-            .err()
-            .and_then(|panic| panic.downcast::<String>().ok())
+        })
             .unwrap_or_else(|| panic!("{name}: went unnoticed"));
         assert!(
             message.contains(says) && message.contains("hooks.step(&mut world)"),

@@ -11,6 +11,7 @@ use super::rules::{
     CollisionRule, CollisionRuleSet, Node, OneWay, OneWayKind, Reach, RuleHooks, Until,
 };
 use super::scenes::Scene;
+use super::world::panic_message;
 use super::{at, box_mesh, cuboid, tilted};
 
 /// A fixed platform at height 3, rotated by `angle` (radians, about the
@@ -409,12 +410,9 @@ fn a_world_whose_only_rules_are_one_way_surfaces_stepped_without_the_hooks_is_ca
             );
             continue;
         }
-        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let message = panic_message(|| {
             misstep(&mut scene, &mut hooks);
-        }));
-        let message = outcome
-            .err()
-            .and_then(|panic| panic.downcast::<String>().ok())
+        })
             .unwrap_or_else(|| panic!("{what} (step {at_step}): went unnoticed"));
         assert!(
             message.contains(says)

@@ -400,7 +400,10 @@ impl Churn for Shooters {
 /// chunk, which goes; 10 chunks (500 bodies) alive. In the rules world the
 /// chunk gets rules that leave the physics as it is: its tiles a group that
 /// ignores the group of a far marker, half its boxes a personal `Normal`,
-/// and with `specific` two boxes a specific `NoResponse` about the marker.
+/// with `specific` two boxes a specific `NoResponse` about the marker, and
+/// with `defaults` the marker's group also ignores `DEFAULT_DYNAMIC`: a rule
+/// that reaches the default groups, whose plan then covers every collider
+/// (a `FullPass::DefaultGroups`).
 struct Stream {
     step: u32,
     chunks: VecDeque<Vec<RigidBodyHandle>>,
@@ -411,8 +414,8 @@ struct Stream {
 
 /// The stream's world, with its marker far away, and the rules: the chunk
 /// group, whose tiles ignore each other, and the marker in a group it
-/// ignores.
-fn stream(specific: bool) -> (PhysicsWorld, CollisionRuleSet, Stream) {
+/// ignores (and, with `defaults`, the default dynamic group too).
+fn stream(specific: bool, defaults: bool) -> (PhysicsWorld, CollisionRuleSet, Stream) {
     let mut world = PhysicsWorld::new();
     let marker =
         world.insert_body(RigidBodyBuilder::fixed().translation(Vector::new(1e4, 0.0, 0.0)));
@@ -421,6 +424,9 @@ fn stream(specific: bool) -> (PhysicsWorld, CollisionRuleSet, Stream) {
     let (chunk_group, far) = (rules.create_group(), rules.create_group());
     rules.set_group(marker, Some(far));
     rules.set_group_rule(chunk_group, far, CollisionRule::NoPair);
+    if defaults {
+        rules.set_group_rule(far, CollisionGroup::DEFAULT_DYNAMIC, CollisionRule::NoPair);
+    }
     // The tiles are fixed: without this rule their pairs with each other
     // are `Normal`, which two non-dynamic bodies get as `NoResponse`
     // (contacts, no response), and Rapier would compute contacts between
@@ -661,6 +667,7 @@ enum Changing {
     Shooters(Shot),
     Stream {
         specific: bool,
+        defaults: bool,
     },
     Pickups,
     /// `per_step` balls in and as many out every step over a level of
@@ -682,8 +689,8 @@ impl Changing {
                 let (world, rules, churn) = shooters(by_hand, shot);
                 (world, rules, Box::new(churn))
             }
-            Changing::Stream { specific } => {
-                let (world, rules, churn) = stream(specific);
+            Changing::Stream { specific, defaults } => {
+                let (world, rules, churn) = stream(specific, defaults);
                 (world, rules, Box::new(churn))
             }
             Changing::Pickups => {
@@ -896,19 +903,37 @@ fn changing() -> Vec<(String, usize, Changing, bool)> {
         (
             "churn/stream-control".into(),
             500,
-            Changing::Stream { specific: false },
+            Changing::Stream {
+                specific: false,
+                defaults: false,
+            },
             true,
         ),
         (
             "churn/stream-groups".into(),
             500,
-            Changing::Stream { specific: false },
+            Changing::Stream {
+                specific: false,
+                defaults: false,
+            },
             false,
         ),
         (
             "churn/stream".into(),
             500,
-            Changing::Stream { specific: true },
+            Changing::Stream {
+                specific: true,
+                defaults: false,
+            },
+            false,
+        ),
+        (
+            "churn/stream-defaults".into(),
+            500,
+            Changing::Stream {
+                specific: false,
+                defaults: true,
+            },
             false,
         ),
         ("churn/pickups-control".into(), 106, Changing::Pickups, true),

@@ -42,7 +42,7 @@ pub(crate) fn replan_some(
         colliders,
         ..
     } = *request;
-    if request.all_hooked.is_some() || plan.full.is_some() {
+    if request.all_hooked.is_some() {
         return None;
     }
     let pinned = request.pinned_colliders();
@@ -240,7 +240,15 @@ fn base_of(
                 Some(entry) => *entry,
                 // Checked when the plan was made: a default class is planned
                 // as Rapier's defaults unless the plan is a full pass.
-                None => ColliderPlan::unreached(dynamic),
+                None if plan.full.is_none() => ColliderPlan::unreached(dynamic),
+                // A full pass classed every collider: a default class with
+                // members and no entry is one its groups' settings hook (a
+                // `NoResponse` where soft bodies are); one without members
+                // is new to the plan, whose settings did not see it.
+                None if plan.class_counts.contains_key(&class) => {
+                    ColliderPlan::hooked_plan(dynamic)
+                }
+                None => return None,
             }
         }
         Some(class) => *plan.classes.get(&class)?,

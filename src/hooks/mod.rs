@@ -202,6 +202,9 @@ struct Deciders {
 struct Boundary {
     /// Counts steps; the hook compares it to tell the CCD's second answer.
     step: u64,
+    /// The rule set the hooks last looked at (`model/identity.rs`): another
+    /// one put in place of it is followed whole.
+    rules_seen: u64,
     /// `prepare` ran and `after_step` has not yet.
     prepared: bool,
     /// The hook answered since the last `prepare`.
@@ -351,6 +354,7 @@ impl Default for RuleHooks {
 impl RuleHooks {
     /// Hooks that apply `rules` to every collider of the worlds they step.
     pub fn new(rules: CollisionRuleSet) -> RuleHooks {
+        let rules_seen = rules.identity.number();
         RuleHooks {
             decide: Deciders {
                 rules,
@@ -363,6 +367,7 @@ impl RuleHooks {
             pending: Mutex::new(HashMap::new()),
             boundary: Boundary {
                 step: 0,
+                rules_seen,
                 prepared: false,
                 stepped: AtomicBool::new(false),
                 own_step: false,
@@ -417,9 +422,10 @@ impl RuleHooks {
 
     /// The rules, to edit. Under [`RecalculationPolicy::OnChange`] the live
     /// pairs an edit can affect are recalculated before the next step. A
-    /// rule set loaded with `serde` may be put in place of the whole set
-    /// (`*hooks.rules_mut() = loaded`): it comes marked as entirely changed,
-    /// so every live pair and the plan follow it at the next step.
+    /// whole rule set may be put in place of the hooks' one (`*hooks.rules_mut()
+    /// = loaded`, a new set, a copy, two hooks' sets swapped): every set is
+    /// another to the hooks, copies included, so every live pair and the plan
+    /// follow the new one at the next step.
     pub fn rules_mut(&mut self) -> &mut CollisionRuleSet {
         &mut self.decide.rules
     }

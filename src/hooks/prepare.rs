@@ -188,6 +188,13 @@ impl RuleHooks {
 
     /// Phase 1: what the edits touched starts being watched.
     fn watch_edits(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) -> Changed {
+        let identity = self.decide.rules.identity.number();
+        if identity != self.boundary.rules_seen {
+            // A set put in place of the one the hooks held, whatever its
+            // log says: every pair and plan follows it.
+            self.boundary.rules_seen = identity;
+            self.decide.rules.mark_all_changed();
+        }
         let changes = self.decide.rules.take_changes();
         let nodes = match self.decide.rules.touched_nodes(&changes) {
             Some(nodes) if !self.planned.exhaustive && self.boundary.step > 1 => nodes,
@@ -462,6 +469,7 @@ impl RuleHooks {
             && self.planned.plan.full.is_none()
             && self.queued.replan.is_none()
             && !self.decide.rules.has_changes()
+            && self.decide.rules.identity.number() == self.boundary.rules_seen
             && self.queued.candidates.is_empty()
             && self.queued.forced.is_empty()
             && self.queued.wake_colliders.is_empty()

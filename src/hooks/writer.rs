@@ -32,6 +32,12 @@ impl RuleHooks {
         let mut reached: Vec<ColliderHandle> = self.planned.roster.colliders().collect();
         let waiting = self.queued.candidates.iter().copied();
         reached.extend(waiting.filter(|&c| colliders.contains(c)));
+        // And every collider that carries the crate's writes (a loaded
+        // set's among them, which no roster watches yet): one no rule
+        // reaches any more, as after an end that came at the first step
+        // after loading, gets the project's settings back.
+        let carrying = self.planned.written.iter().map(|(c, _)| c);
+        reached.extend(carrying.filter(|&c| colliders.contains(c)));
         reached.sort_unstable_by_key(|h| h.into_raw_parts());
         reached.dedup();
         let own = |h: ColliderHandle, c: &Collider| self.own_settings(h, c);
@@ -357,7 +363,8 @@ impl RuleHooks {
              `hooks.world_replaced()` after putting a loaded world in place (in Bevy, \
              `CollisionRules::world_replaced()` on the context), or those writes are read as \
              the project's settings (docs/semantics.md, \"Saving and loading\"). If these \
-             hooks step two worlds in turn, give each world its own `RuleHooks` instead"
+             hooks step two worlds in turn, or another `RuleHooks` steps this world in turn, \
+             give each world one `RuleHooks` instead"
         );
     }
 

@@ -113,8 +113,7 @@ impl Changes {
 /// The change log, which the hooks read before each step.
 impl CollisionRuleSet {
     /// Logs "everything changed": hooks that receive this rule set whole
-    /// (a loaded one put in place of another) recalculate and plan all.
-    #[cfg(feature = "serde")]
+    /// (one put in place of another) recalculate and plan all.
     pub(crate) fn mark_all_changed(&mut self) {
         self.changes.everything();
     }

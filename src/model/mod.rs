@@ -30,6 +30,7 @@ pub(crate) mod error;
 pub(crate) mod group;
 pub(crate) mod group_table;
 pub(crate) mod hierarchy;
+pub(crate) mod identity;
 pub(crate) mod integrity;
 pub(crate) mod joints;
 pub(crate) mod layers;

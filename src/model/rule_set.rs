@@ -9,6 +9,7 @@ use super::changes::Changes;
 use super::endings::Endings;
 use super::group_table::GroupTable;
 use super::hierarchy::Hierarchy;
+use super::identity::Identity;
 use super::decision::Decision;
 use super::written::Written;
 use super::node::HandleMap;
@@ -79,6 +80,8 @@ pub struct CollisionRuleSet {
     /// A copy of how the hooks decided each specific entry, kept as
     /// `writes` is, for the same reason.
     pub(crate) decisions: HashMap<(Node, Node), Decision>,
+    /// Which set this is: hooks tell a set put in place of theirs.
+    pub(crate) identity: Identity,
 }
 
 impl Default for CollisionRuleSet {
@@ -97,6 +100,7 @@ impl Default for CollisionRuleSet {
             one_ways_used: false,
             writes: HandleMap::default(),
             decisions: HashMap::new(),
+            identity: Identity::default(),
         }
     }
 }

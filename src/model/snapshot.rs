@@ -355,8 +355,8 @@ impl TryFrom<SavedRuleSet> for CollisionRuleSet {
         }
         rules.decisions = saved.decisions.into_iter().map(|(n, o, d)| ((n, o), d)).collect();
         // Put in place of a rule set the hooks hold (`*hooks.rules_mut() =
-        // loaded`), every pair and plan is to be looked at again.
-        rules.mark_all_changed();
+        // loaded`), it is another set (`model/identity.rs`): every pair and
+        // plan is looked at again.
         Ok(rules)
     }
 }

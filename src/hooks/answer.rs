@@ -9,6 +9,7 @@ use std::sync::{MutexGuard, PoisonError};
 use hashbrown::HashMap;
 use super::super::rapier::prelude::*;
 
+use super::one_way_contacts::STANDING_BITS;
 use super::{CalculatorContext, ManifoldUpdate, PairCreated, PairKey, PairState, RecalculationPolicy, RuleHooks};
 use super::super::CollisionRule;
 use super::super::model::{BodyKinds, dynamic_body, soft_rigid};
@@ -508,7 +509,7 @@ impl PhysicsHooks for RuleHooks {
 
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext<'_>) {
         self.replay_frozen(context);
-        self.apply_one_ways(context);
+        let standings_kept = self.apply_one_ways(context);
         let (a, b) = (context.collider1, context.collider2);
         // Two soft surfaces without response keep their pair and its
         // events, and their contacts are disabled (`docs/semantics.md`,
@@ -528,7 +529,19 @@ impl PhysicsHooks for RuleHooks {
         if let Some(user) =
             self.user_for(context.colliders, a, b, ActiveHooks::MODIFY_SOLVER_CONTACTS)
         {
+            // The project's hook sees the manifold's `user_data` without the
+            // one-way standings the crate keeps in its top bits: Rapier's own
+            // `update_as_oneway_platform` panics on a value it did not write
+            // (`docs/semantics.md`, "One-way surfaces").
+            let standings = context.rigid_mut().filter(|_| standings_kept).map(|rigid| {
+                let standings = *rigid.user_data & STANDING_BITS;
+                *rigid.user_data &= !STANDING_BITS;
+                standings
+            });
             user.modify_solver_contacts(context);
+            if let (Some(standings), Some(rigid)) = (standings, context.rigid_mut()) {
+                *rigid.user_data = (*rigid.user_data & !STANDING_BITS) | standings;
+            }
         }
     }
 }

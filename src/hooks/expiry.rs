@@ -13,6 +13,12 @@ use super::super::world::apart;
 use super::super::{CollisionRule, Until};
 use super::{PairKey, RuleHooks};
 
+/// Whether the rules with an end can count a step of `dt` seconds: a
+/// finite time, zero (a paused world) or more.
+pub(super) fn counts(dt: Real) -> bool {
+    dt >= 0.0 && dt.is_finite()
+}
+
 impl RuleHooks {
     /// Replaces the rule of the live pair of `a` and `b` as
     /// [`set_pair_rule`](Self::set_pair_rule) does, until `until` comes:
@@ -102,7 +108,7 @@ impl RuleHooks {
     #[track_caller]
     pub fn set_timestep(&mut self, dt: Real) {
         assert!(
-            dt >= 0.0 && dt.is_finite(),
+            counts(dt),
             "RuleHooks::set_timestep({dt}): the time the coming steps take, a finite number of \
              seconds, zero or more"
         );

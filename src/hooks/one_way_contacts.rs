@@ -39,6 +39,10 @@ const fn offset(side: usize) -> u32 {
     28 + 2 * side as u32
 }
 
+/// The bits of a manifold's `user_data` the standings take: the project's
+/// own hooks see the rest, and their writes to these are not kept.
+pub(super) const STANDING_BITS: u32 = 0b1111 << offset(0);
+
 fn standing(user_data: u32, side: usize) -> Standing {
     match (user_data >> offset(side)) & 0b11 {
         1 => Standing::Allowed,
@@ -56,11 +60,13 @@ impl RuleHooks {
     /// the manifold's solver contacts. Only pairs with a collider under a
     /// one-way node are asked (the planner gives those colliders the
     /// contact-modification flag), and only pairs whose contacts get a
-    /// response have solver contacts to drop.
-    pub(super) fn apply_one_ways(&self, context: &mut ContactModificationContext<'_>) {
+    /// response have solver contacts to drop. Returns whether the
+    /// manifold's `user_data` holds standings of the crate's (a convex pair
+    /// with a surface), which the project's own hooks must not see.
+    pub(super) fn apply_one_ways(&self, context: &mut ContactModificationContext<'_>) -> bool {
         let rules = &self.decide.rules;
         if !rules.uses_one_ways() {
-            return;
+            return false;
         }
         let (bodies, colliders) = (context.bodies, context.colliders);
         let sides = [context.collider1, context.collider2];
@@ -73,7 +79,7 @@ impl RuleHooks {
             Some((one_way, normal, arriving))
         });
         if surfaces.iter().all(Option::is_none) {
-            return;
+            return false;
         }
         // A one-way surface is the crate's answer too: a world whose only
         // rules are one-way surfaces, stepped with the hooks but without
@@ -82,7 +88,7 @@ impl RuleHooks {
         self.answering();
         let parts = made_of_parts(colliders, sides[0], sides[1]);
         let Some(rigid) = context.rigid_mut() else {
-            return;
+            return false;
         };
         let part = (
             PairKey::new(sides[0], sides[1]),
@@ -152,6 +158,7 @@ impl RuleHooks {
                 self.note_one_way_witness(part.0);
             }
         }
+        convex
     }
 }
 

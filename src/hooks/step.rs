@@ -7,6 +7,7 @@ use std::sync::PoisonError;
 
 use super::super::rapier::prelude::*;
 
+use super::expiry::counts;
 use super::{ManifoldUpdate, RuleHooks, WorldRef};
 use super::super::StepStats;
 use super::super::world::{Joints, census};
@@ -28,12 +29,24 @@ pub(super) fn missing(call: &str, when: &str) -> ! {
 impl RuleHooks {
     /// Steps `world` with the rules: [`prepare`](Self::prepare), waking what
     /// the edits need awake, Rapier's step, and [`after_step`](Self::after_step).
+    ///
+    /// # Panics
+    ///
+    /// If the project called [`prepare`](Self::prepare) itself since the
+    /// last step (this step would count twice against every rule with an
+    /// end), or if the world's `integration_parameters.dt` is negative,
+    /// infinite or not a number. The same holds for
+    /// [`step_with_events`](Self::step_with_events) and
+    /// [`step_pipeline`](Self::step_pipeline).
+    #[track_caller]
     pub fn step(&mut self, world: &mut PhysicsWorld) {
         self.step_with_events(world, &());
     }
 
     /// [`step`](Self::step), with Rapier's events sent to `events`.
+    #[track_caller]
     pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
+        self.check_own_step(world.integration_parameters.dt);
         self.follow_soft_bodies(&world.soft_bodies, &world.bodies);
         if self.idle(&world.colliders) {
             // The same call as `world.step_with_events`, so that a world the
@@ -95,6 +108,7 @@ impl RuleHooks {
     /// assert!(bodies[ghost].translation().y < 0.0, "the ghost fell through the floor");
     /// ```
     #[allow(clippy::too_many_arguments)]
+    #[track_caller]
     pub fn step_pipeline(
         &mut self,
         pipeline: &mut PhysicsPipeline,
@@ -111,6 +125,7 @@ impl RuleHooks {
         ccd_solver: &mut CCDSolver,
         events: &dyn EventHandler,
     ) {
+        self.check_own_step(integration_parameters.dt);
         self.follow_soft_bodies(soft_bodies, bodies);
         self.boundary.dt = integration_parameters.dt;
         self.boundary.own_step = false;
@@ -159,6 +174,24 @@ impl RuleHooks {
     /// A step of a world the rules do not reach: no collider carries the
     /// hook flag, so Rapier never calls the hook.
     #[inline]
+    /// What a step of the hooks' own is given: no bracket of the
+    /// project's open (its `prepare` would count this step twice against
+    /// every rule with an end), and a timestep the ends can count.
+    #[track_caller]
+    fn check_own_step(&self, dt: Real) {
+        assert!(
+            !self.boundary.prepared,
+            "RuleHooks::prepare was called before RuleHooks::step (or step_pipeline), which \
+             calls it itself: every rule with an end would count this step twice. Call step \
+             alone, or prepare, freeze_manifolds and wake_edited, Rapier's step, and after_step"
+        );
+        assert!(
+            counts(dt),
+            "IntegrationParameters::dt is {dt}: the rules with an end count the world's \
+             timestep, a finite number of seconds, zero or more"
+        );
+    }
+
     fn count_idle_step(&mut self) {
         self.boundary.step += 1;
         self.stats = StepStats {

@@ -164,7 +164,9 @@ impl RuleHooks {
         let message = format!(
             "{what}. Step with `hooks.step(&mut world)` (or `hooks.step_pipeline(..)`, or pass \
              the hooks to `PhysicsPipeline::step` between `prepare` and `after_step`), never \
-             `world.step()`; in Bevy, add `RapierPhysicsPlugin::<CollisionRulesHooks>`"
+             `world.step()`; in Bevy, add `RapierPhysicsPlugin::<CollisionRulesHooks>`. \
+             Another `RuleHooks` stepping this world in turn looks the same: give each world \
+             one `RuleHooks`"
         );
         // A debug build stops at the first such step, where the developer
         // looks; a release build keeps running and says it once.

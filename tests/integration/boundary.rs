@@ -1,6 +1,7 @@
 //! The step boundary: CCD substeps, several pipeline steps between
 //! `prepare` and `after_step` (what bevy_rapier does with substeps), the
-//! one-call bare pipeline, and the calls a bare-pipeline user can forget.
+//! one-call bare pipeline, the calls a bare-pipeline user can forget or
+//! make twice, and a rule set put in place of the hooks' one.
 
 use super::rapier::prelude::*;
 use super::rules::{CollisionRule, ManifoldUpdate, OneWay, RuleHooks, WorldRef};
@@ -202,7 +203,7 @@ fn step_pipeline_is_step_on_bare_sets() {
 fn a_forgotten_call_fails_loudly_and_names_it() {
     // (what the user does, the call the message names)
     type Misuse = fn(&mut Crossing, &mut RuleHooks);
-    let table: [(&str, Misuse, &str); 4] = [
+    let table: [(&str, Misuse, &str); 6] = [
         (
             "after_step without prepare",
             |s, hooks| {
@@ -248,6 +249,27 @@ fn a_forgotten_call_fails_loudly_and_names_it() {
                 hooks.after_step(&w.narrow_phase, &w.bodies, &w.colliders);
             },
             "RuleHooks::freeze_manifolds",
+        ),
+        // Found by a misuse audit: every rule with an end counted the step
+        // twice, silently.
+        (
+            "prepare, then the hooks' own step",
+            |s, hooks| {
+                let w = &mut s.world;
+                hooks.prepare(&w.bodies, &mut w.colliders);
+                hooks.step(w);
+            },
+            "which calls it itself",
+        ),
+        // Found by the same audit: one step of a NaN timestep left every
+        // `Until::seconds` counting NaN for good.
+        (
+            "a timestep that is not a number",
+            |s, hooks| {
+                s.world.integration_parameters.dt = f32::NAN;
+                hooks.step(&mut s.world);
+            },
+            "IntegrationParameters::dt is NaN",
         ),
     ];
     for (misuse, act, names) in table {
@@ -446,4 +468,78 @@ fn stepping_rapier_without_the_hooks_or_their_prepare_is_caught_at_the_next_step
             "{name}: the message names what happened and the fix: {message}"
         );
     }
+}
+
+/// A floor and a ball above it, the same handles in every copy.
+fn ball_over_floor() -> (PhysicsWorld, ColliderHandle, RigidBodyHandle, ColliderHandle) {
+    let mut world = PhysicsWorld::new();
+    let floor = world.insert_body(RigidBodyBuilder::fixed());
+    let deck = world.insert_collider(cuboid(10.0, 0.5, 10.0), Some(floor));
+    let ball = world.insert_body(RigidBodyBuilder::dynamic().translation(at(0.0, 3.0)));
+    let shot = world.insert_collider(ColliderBuilder::ball(0.5), Some(ball));
+    (world, deck, ball, shot)
+}
+
+/// Found by a misuse audit: a rule set put in place of the hooks' one was
+/// followed only where its change log held edits. A fresh set, or a copy
+/// taken after its edits were read, left the colliders with the old set's
+/// settings: a ball fell through a floor no rule named any more. Every set
+/// is now another to the hooks, copies included (`docs/semantics.md`,
+/// "Saving and loading").
+#[test]
+fn a_rule_set_put_in_place_of_the_hooks_one_is_followed_whole() {
+    use super::rules::{CollisionRuleSet, PlanCause};
+    // How the set that lets the ball through the floor is replaced by one
+    // under which it rests; `other` holds such a set, stepped.
+    type Replace = fn(&mut RuleHooks, &mut RuleHooks);
+    let ways: [(&str, Replace); 3] = [
+        ("a new set", |hooks, _| *hooks.rules_mut() = CollisionRuleSet::default()),
+        ("a copy of another's set", |hooks, other| {
+            *hooks.rules_mut() = other.rules().clone();
+        }),
+        ("two hooks' sets swapped", |hooks, other| {
+            std::mem::swap(hooks.rules_mut(), other.rules_mut());
+        }),
+    ];
+    for (way, replace) in ways {
+        let (mut world, deck, ball, shot) = ball_over_floor();
+        let (mut resting, _, other_ball, _) = ball_over_floor();
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_specific(shot, deck, CollisionRule::NoResponse);
+        let mut other = RuleHooks::default();
+        other.rules_mut().set_personal(other_ball, CollisionRule::Normal);
+        for _ in 0..10 {
+            hooks.step(&mut world);
+            other.step(&mut resting);
+        }
+        replace(&mut hooks, &mut other);
+        hooks.step(&mut world);
+        other.step(&mut resting);
+        assert_eq!(hooks.stats().full_plan, Some(PlanCause::GlobalEdit), "{way}: {:?}", hooks.stats());
+        for _ in 0..120 {
+            hooks.step(&mut world);
+            other.step(&mut resting);
+        }
+        let y = world.bodies[ball].translation().y;
+        assert!((0.9..1.1).contains(&y), "{way}: the ball rests on the floor: y = {y}");
+        if way == "two hooks' sets swapped" {
+            let y = resting.bodies[other_ball].translation().y;
+            assert!(y < 0.0, "{way}: the other world's ball fell through its floor: y = {y}");
+        }
+    }
+}
+
+/// Found by a misuse audit: `manifold_update` panicked in debug builds on
+/// a live pair whose rule is `Defer` (the default rule set to `Defer`),
+/// which `pair_rule` reports as it is.
+#[test]
+fn a_live_pair_whose_rule_is_defer_has_a_manifold_setting() {
+    let (mut world, deck, _, shot) = ball_over_floor();
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_default_rule(CollisionRule::Defer);
+    for _ in 0..60 {
+        hooks.step(&mut world);
+    }
+    assert_eq!(hooks.pair_rule(&world, shot, deck), Some(CollisionRule::Defer));
+    assert_eq!(hooks.manifold_update(&world, shot, deck), Some(ManifoldUpdate::ByRule));
 }

@@ -4,7 +4,7 @@
 //! a world with layers and no rules steps bit for bit as plain Rapier.
 
 use super::rapier::prelude::*;
-use super::rules::{CollisionRule, CollisionRuleSet, RuleHooks};
+use super::rules::{CollisionRule, CollisionRuleSet, OneWay, RuleHooks};
 use super::{at, cuboid};
 
 use super::scenes::Scene;
@@ -593,6 +593,44 @@ fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
     assert!(
         paired && yg < 0.0,
         "the ghost fell through the platform: y = {yg}, paired {paired}"
+    );
+}
+
+/// Found by a misuse audit: a platform the project kept its own one-way
+/// hook on (Rapier's `update_as_oneway_platform`) and also made a one-way
+/// surface of the rules' panicked inside Rapier ("entered unreachable
+/// code"): Rapier's helper met the standings the crate keeps in the top
+/// bits of the manifold's `user_data`. The project's hook now sees the
+/// field without them, and both surfaces apply.
+#[test]
+fn the_projects_one_way_hook_on_a_surface_of_the_rules_sees_only_its_own_state() {
+    let mut world = PhysicsWorld::new();
+    let platform = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, 2.0)));
+    world.insert_collider(
+        cuboid(4.0, 0.1, 4.0)
+            .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS)
+            .user_data(1),
+        Some(platform),
+    );
+    // Thrown up through the platform from below.
+    let ball = world.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(at(-1.0, 0.0))
+            .linvel(at(0.0, 8.0)),
+    );
+    world.insert_collider(ColliderBuilder::ball(0.25), Some(ball));
+    let mut hooks = RuleHooks::default();
+    hooks
+        .rules_mut()
+        .set_one_way(platform, Some(OneWay::new(at(0.0, 1.0))));
+    hooks.set_user_hooks(ProjectHooks::default());
+    for _ in 0..120 {
+        hooks.step(&mut world);
+    }
+    let y = world.bodies[ball].translation().y;
+    assert!(
+        (2.2..2.5).contains(&y),
+        "the ball went up through both surfaces and rests on the platform: y = {y}"
     );
 }
 

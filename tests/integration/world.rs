@@ -1194,16 +1194,19 @@ pub fn numeric_leaves(value: &serde_json::Value, at: String, leaves: &mut Vec<St
     }
 }
 
-/// The value of the environment variable `name` read by `parse`, else
-/// `default`.
-/// The message `act` panics with (a `String`, as `format!` panics give),
-/// or `None` if it returns.
+/// The message `act` panics with (a `String`, as `format!` panics give, or
+/// a `&str`), or `None` if it returns.
 pub fn panic_message(act: impl FnOnce()) -> Option<String> {
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(act))
         .err()
-        .and_then(|panic| panic.downcast::<String>().ok().map(|m| *m))
+        .and_then(|panic| match panic.downcast::<String>() {
+            Ok(message) => Some(*message),
+            Err(panic) => panic.downcast::<&str>().ok().map(|m| m.to_string()),
+        })
 }
 
+/// The value of the environment variable `name` read by `parse`, else
+/// `default`.
 pub fn env_or<T>(name: &str, default: T, parse: impl Fn(&str) -> Option<T>) -> T {
     std::env::var(name)
         .ok()

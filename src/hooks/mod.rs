@@ -815,13 +815,17 @@ impl RuleHooks {
             user,
         } = old.decide;
         // The set's copy of the writes is the hooks' own unless a loaded
-        // set was put in its place, whose copy is the loaded world's.
+        // set was put in its place, whose copy is the loaded world's: a set
+        // the hooks have not looked at yet (`model/identity.rs`), even one
+        // whose writes happen to equal theirs (its decisions may not), or
+        // one whose writes differ from theirs.
+        let put_in_place = rules.identity.number() != old.boundary.rules_seen;
         let mirrored = rules
             .writes
             .iter()
             .map(|(h, w)| (h, *w))
             .eq(old.planned.written.iter().map(|(h, w)| (h, *w)));
-        rules.start_over(!mirrored);
+        rules.start_over(put_in_place || !mirrored);
         self.decide = Deciders {
             rules,
             policy,

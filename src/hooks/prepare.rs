@@ -8,6 +8,7 @@ use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
 use super::step::missing;
+use super::super::world::Mark;
 use super::{PairKey, PlanCause, RecalculationPolicy, RuleHooks};
 use super::super::planner::{self, personal::first_personal, room::Room};
 use super::super::{CollisionRule, FullPass, Node, StepStats};
@@ -504,18 +505,31 @@ impl RuleHooks {
                 self.planned.roster.watch_body(bodies, body);
             }
             // Watched even if Rapier removed it: the look then forgets it.
-            Node::Collider(c) => {
-                if self.planned.roster.watch_collider(bodies, colliders, c) {
-                    self.queued.candidates.push(c);
-                }
-            }
+            Node::Collider(c) => self.watch_collider(bodies, colliders, c),
         }
         self.planned.roster.mark(node);
         for c in self.colliders_under(node, bodies, colliders) {
-            if self.planned.roster.watch_collider(bodies, colliders, c) {
-                self.queued.candidates.push(c);
-            }
+            self.watch_collider(bodies, colliders, c);
             self.planned.roster.mark(Node::Collider(c));
+        }
+    }
+
+    /// Starts watching collider `c` for an edit, as a candidate for the
+    /// plan if it was not watched. One that carries the crate's mark with
+    /// no write of these hooks' under it, after their first step, holds
+    /// another run's writes (a world put in place without
+    /// `world_replaced`; the hooks let go of it since, so the look no
+    /// longer compares it): said as the look says it of a watched one.
+    fn watch_collider(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, c: ColliderHandle) {
+        if !self.planned.roster.watch_collider(bodies, colliders, c) {
+            return;
+        }
+        self.queued.candidates.push(c);
+        let foreign = self.boundary.step > 1
+            && self.planned.written.get(c).is_none()
+            && colliders.get(c).is_some_and(|co| Mark::on(co).is_marked());
+        if foreign {
+            self.report_foreign_marks();
         }
     }
 
@@ -600,6 +614,17 @@ fn reached(
             return true;
         }
     }
+    named(rules, bodies, colliders, node)
+}
+
+/// Whether a rule names `node` or a node of its chain: a record, an entry
+/// about it, a link of the parent map.
+pub(super) fn named(
+    rules: &super::super::CollisionRuleSet,
+    bodies: &RigidBodySet,
+    colliders: &ColliderSet,
+    node: Node,
+) -> bool {
     let mut current = Some(node);
     while let Some(n) = current {
         let linked = match n {

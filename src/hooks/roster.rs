@@ -127,6 +127,18 @@ impl<H: Handle, K> Watched<H, K> {
         self.list.push((handle, Entry::Alone));
     }
 
+    /// Lets go of `handle`, leaving a hole in its place.
+    fn let_go(&mut self, handle: H) {
+        let Some(i) = self.at.remove(handle) else {
+            return;
+        };
+        self.list[i as usize].1 = Entry::Hole;
+        self.holes += 1;
+        if self.holes * 2 > self.list.len() {
+            self.close_up();
+        }
+    }
+
     /// Keeps the listed objects `keep` says (`None`: a handle of no object
     /// in the world), in their order.
     #[inline]
@@ -272,6 +284,11 @@ impl Roster {
             known.wrote = wrote.map(|(settings, _)| settings);
             known.crate_mark = wrote.map_or(Mark::default(), |(_, mark)| mark);
         }
+    }
+
+    /// Stops watching `collider`: the rules no longer reach it.
+    pub(crate) fn let_go(&mut self, collider: ColliderHandle) {
+        self.colliders.let_go(collider);
     }
 
     /// Marks a watched `node`: whether the rules still reach it is asked at

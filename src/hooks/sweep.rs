@@ -29,7 +29,11 @@ impl RuleHooks {
         quiet: bool,
     ) {
         if !std::mem::take(&mut self.boundary.prepared) {
-            missing("prepare", "before the step");
+            missing(
+                "prepare",
+                "before the step (an after_step called twice, or after RuleHooks::step, which \
+                 calls both itself, looks the same)",
+            );
         }
         self.soft.forget_pieces();
         if !self.queued.to_wake.is_empty() {

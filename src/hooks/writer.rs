@@ -4,6 +4,7 @@
 use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
+use super::prepare::named;
 use super::{ManifoldUpdate, PlanCause, RecalculationPolicy, RuleHooks, own_settings};
 use super::super::model::dynamic_body;
 use super::super::Node;
@@ -150,7 +151,23 @@ impl RuleHooks {
         }
         let mut planned = planned;
         self.write_in_order(bodies, colliders, &mut planned);
+        let whole = all_hooked.is_some() || self.planned.plan.full.is_some();
         for (handle, entry) in planned {
+            // Planned with Rapier's defaults, and no rule names it any more
+            // (the look let it go, or its last rule or the last entry about
+            // it went this step): the project's settings are back, and it
+            // is neither planned nor watched, as a whole plan leaves it.
+            let rules = &self.decide.rules;
+            if !whole
+                && entry.is_rapier_default()
+                && !named(rules, bodies, colliders, Node::Collider(handle))
+            {
+                if self.planned.plan.forget(handle) {
+                    self.queued.replan.get_or_insert(PlanCause::NewClass);
+                }
+                self.planned.roster.let_go(handle);
+                continue;
+            }
             self.planned.plan.colliders.insert(handle, entry);
         }
         self.planned.recount = true;

@@ -36,6 +36,7 @@ pub enum OneWayKind {
 /// assert_eq!(up.normal(), Vector::Y);
 /// assert_eq!(up.max_angle(), 0.5);
 /// assert_eq!(OneWay::new(Vector::Y * 3.0).normal(), Vector::Y, "the normal is normalized");
+/// assert_eq!(OneWay::new(Vector::Y * 1e30).normal(), Vector::Y, "however long it is");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -56,13 +57,16 @@ impl OneWay {
     #[must_use]
     #[track_caller]
     pub fn new(normal: Vector) -> OneWay {
-        let length = normal.length();
+        // Scaled by its largest component first, so that the length of a
+        // finite vector never overflows (`1e30 * Y` is a direction too).
+        let largest = normal.abs().max_element();
+        let scaled = normal / largest;
         assert!(
-            length.is_finite() && length > 1e-6,
+            largest.is_finite() && largest * scaled.length() > 1e-6,
             "OneWay::new({normal:?}): the normal must be a direction (not zero, finite)"
         );
         OneWay {
-            normal: normal / length,
+            normal: scaled / scaled.length(),
             angle: std::f32::consts::FRAC_PI_4,
             kind: OneWayKind::Rapier,
         }

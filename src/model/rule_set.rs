@@ -128,8 +128,10 @@ impl CollisionRuleSet {
     ///
     /// # Panics
     ///
-    /// If a group was not created by this rule set (nor is built in): a group
-    /// of another rule set means nothing here.
+    /// If a group was not created by this rule set (nor is built in): its id
+    /// is past the groups this set created. A group of another rule set
+    /// whose id this set also has cannot be told from this set's own, and
+    /// is taken as it: use each set's groups with that set only.
     #[track_caller]
     pub fn set_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup, rule: CollisionRule) {
         self.check_groups(&[a, b]);
@@ -144,7 +146,13 @@ impl CollisionRuleSet {
     }
 
     /// Removes the entry between two groups (the built-in kinematic entry too).
+    ///
+    /// # Panics
+    ///
+    /// As [`set_group_rule`](Self::set_group_rule).
+    #[track_caller]
     pub fn remove_group_rule(&mut self, a: CollisionGroup, b: CollisionGroup) {
+        self.check_groups(&[a, b]);
         self.groups.remove(a, b);
         self.changes.everything();
     }
@@ -166,8 +174,10 @@ impl CollisionRuleSet {
     ///
     /// # Panics
     ///
-    /// If a group was not created by this rule set (nor is built in): a group
-    /// of another rule set means nothing here.
+    /// If a group was not created by this rule set (nor is built in): its id
+    /// is past the groups this set created. A group of another rule set
+    /// whose id this set also has cannot be told from this set's own, and
+    /// is taken as it: use each set's groups with that set only.
     #[track_caller]
     pub fn set_group_rules_in_set(
         &mut self,
@@ -181,7 +191,13 @@ impl CollisionRuleSet {
     }
 
     /// Removes every entry between two groups of `set`, each with itself included.
+    ///
+    /// # Panics
+    ///
+    /// As [`set_group_rule`](Self::set_group_rule).
+    #[track_caller]
     pub fn remove_group_rules_in_set(&mut self, set: &[CollisionGroup]) {
+        self.check_groups(set);
         self.groups.remove_in_set(set);
         self.changes.everything();
     }
@@ -203,8 +219,10 @@ impl CollisionRuleSet {
     ///
     /// # Panics
     ///
-    /// If a group was not created by this rule set (nor is built in): a group
-    /// of another rule set means nothing here.
+    /// If a group was not created by this rule set (nor is built in): its id
+    /// is past the groups this set created. A group of another rule set
+    /// whose id this set also has cannot be told from this set's own, and
+    /// is taken as it: use each set's groups with that set only.
     #[track_caller]
     pub fn set_group_rules_with_set(
         &mut self,
@@ -219,13 +237,21 @@ impl CollisionRuleSet {
     }
 
     /// Removes the entries between `group` and each group of `set`.
+    ///
+    /// # Panics
+    ///
+    /// As [`set_group_rule`](Self::set_group_rule).
+    #[track_caller]
     pub fn remove_group_rules_with_set(&mut self, group: CollisionGroup, set: &[CollisionGroup]) {
+        self.check_groups(&[group]);
+        self.check_groups(set);
         self.groups.remove_with_set(group, set);
         self.changes.everything();
     }
 
     /// Every group of `a` gets `rule` with every group of `b`; pairs inside
-    /// one set are left alone.
+    /// one set are left alone, but a group listed in both sets gets `rule`
+    /// with itself (it is a group of `a` and of `b`).
     ///
     /// ```
     /// use rapier_collision_rules::{CollisionRule::*, CollisionRuleSet};
@@ -242,8 +268,10 @@ impl CollisionRuleSet {
     ///
     /// # Panics
     ///
-    /// If a group was not created by this rule set (nor is built in): a group
-    /// of another rule set means nothing here.
+    /// If a group was not created by this rule set (nor is built in): its id
+    /// is past the groups this set created. A group of another rule set
+    /// whose id this set also has cannot be told from this set's own, and
+    /// is taken as it: use each set's groups with that set only.
     #[track_caller]
     pub fn set_group_rules_between_sets(
         &mut self,
@@ -258,7 +286,14 @@ impl CollisionRuleSet {
     }
 
     /// Removes every entry between a group of `a` and a group of `b`.
+    ///
+    /// # Panics
+    ///
+    /// As [`set_group_rule`](Self::set_group_rule).
+    #[track_caller]
     pub fn remove_group_rules_between_sets(&mut self, a: &[CollisionGroup], b: &[CollisionGroup]) {
+        self.check_groups(a);
+        self.check_groups(b);
         self.groups.remove_between_sets(a, b);
         self.changes.everything();
     }

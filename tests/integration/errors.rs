@@ -110,3 +110,38 @@ fn a_refused_group_edit_changes_nothing() {
     );
     assert_eq!(rules.group(b[0]), None);
 }
+
+/// Found by a misuse audit: the removals took a group of another rule set
+/// silently, where every other verb of the group table refuses it.
+#[test]
+fn every_group_table_verb_refuses_a_group_of_another_rule_set() {
+    use super::rules::{CollisionGroup, CollisionRule::NoPair};
+    use super::world::panic_message;
+    type Verb = fn(&mut CollisionRuleSet, CollisionGroup, CollisionGroup);
+    let verbs: [(&str, Verb); 8] = [
+        ("set_group_rule", |r, own, foreign| r.set_group_rule(own, foreign, NoPair)),
+        ("remove_group_rule", |r, own, foreign| r.remove_group_rule(own, foreign)),
+        ("set_group_rules_in_set", |r, own, foreign| {
+            r.set_group_rules_in_set(&[own, foreign], NoPair, NoPair);
+        }),
+        ("remove_group_rules_in_set", |r, own, foreign| r.remove_group_rules_in_set(&[own, foreign])),
+        ("set_group_rules_with_set", |r, own, foreign| r.set_group_rules_with_set(own, &[foreign], NoPair)),
+        ("remove_group_rules_with_set", |r, own, foreign| r.remove_group_rules_with_set(own, &[foreign])),
+        ("set_group_rules_between_sets", |r, own, foreign| {
+            r.set_group_rules_between_sets(&[own], &[foreign], NoPair);
+        }),
+        ("remove_group_rules_between_sets", |r, own, foreign| {
+            r.remove_group_rules_between_sets(&[own], &[foreign]);
+        }),
+    ];
+    let mut other = CollisionRuleSet::default();
+    other.create_group();
+    let foreign = other.create_group();
+    for (verb, act) in verbs {
+        let mut rules = CollisionRuleSet::default();
+        let own = rules.create_group();
+        let message = panic_message(|| act(&mut rules, own, foreign))
+            .unwrap_or_else(|| panic!("{verb} took a group of another rule set"));
+        assert!(message.contains("was not created by this rule set"), "{verb}: {message}");
+    }
+}

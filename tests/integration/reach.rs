@@ -844,3 +844,61 @@ fn a_group_of_fixed_colliders_set_apart_from_the_level_says_both_entries() {
         );
     }
 }
+
+/// Found by a Bevy trial from the docs: a collider no rule names any more
+/// (the other side of an entry whose owner was removed, both sides of an
+/// entry removed, a body whose parent link went) stayed watched and
+/// `Reach::Planned` for good, drawn as planned by the debug view, and a
+/// world whose rules were all gone never went back to stepping as plain
+/// Rapier. The plan of a few colliders now lets such a collider go, as a
+/// whole plan does.
+#[test]
+fn a_collider_no_rule_names_any_more_is_let_go() {
+    use super::rules::Reach;
+    for how in ["owner removed", "entry removed", "parent link removed"] {
+        let mut scene = Scene::new();
+        let (_, wall) = scene.cube(2.0, 0.5);
+        let (ghost, shot) = scene.cube(0.0, 0.5);
+        let mut hooks = RuleHooks::default();
+        if how == "parent link removed" {
+            let (parent, _) = scene.cube(-3.0, 0.5);
+            for body in [parent, ghost] {
+                scene.world.bodies[body].set_body_type(RigidBodyType::KinematicPositionBased, true);
+            }
+            hooks.rules_mut().set_parent(ghost, parent).expect("a link");
+            for _ in 0..3 {
+                hooks.step(&mut scene.world);
+            }
+            hooks.rules_mut().remove_parent(ghost);
+            hooks.step(&mut scene.world);
+            scene.world.remove_body(parent);
+        } else {
+            hooks.rules_mut().set_specific(ghost, wall, NoPair);
+            for _ in 0..3 {
+                hooks.step(&mut scene.world);
+            }
+            if how == "owner removed" {
+                scene.world.remove_body(ghost);
+            } else {
+                hooks.rules_mut().remove_specific(ghost, wall);
+            }
+        }
+        for _ in 0..3 {
+            hooks.step(&mut scene.world);
+        }
+        let stats = hooks.stats();
+        assert_eq!(
+            (stats.watched_colliders, stats.watched_bodies, stats.planned_colliders),
+            (0, 0, 0),
+            "{how}: {stats:?}"
+        );
+        for (what, c) in [("wall", wall), ("ghost", shot)] {
+            assert_eq!(hooks.reach(c), Reach::Unreached, "{how}: the {what}");
+            if let Some(collider) = scene.world.colliders.get(c) {
+                let groups = (collider.collision_groups(), collider.solver_groups());
+                let all = InteractionGroups::all();
+                assert_eq!(groups, (all, all), "{how}: the {what} has Rapier's groups back");
+            }
+        }
+    }
+}

@@ -126,10 +126,12 @@ impl RuleHooks {
     /// every run.
     pub(super) fn end_rules(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) {
         let dt = self.boundary.dt;
-        if !self.has_ends() || dt == 0.0 {
-            // No step is taken: nothing moves, and no count runs.
+        if !self.has_ends() || dt == 0.0 || self.boundary.counted {
+            // No step is taken (nothing moves, and no count runs), or this
+            // step was counted by an earlier `prepare` of its bracket.
             return;
         }
+        self.boundary.counted = true;
         let rules = &mut self.decide.rules;
         for DueEnd {
             node,

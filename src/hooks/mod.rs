@@ -220,6 +220,10 @@ struct Boundary {
     /// given to `world.step_with_events(&hooks, ..)`). The next `prepare`
     /// says so.
     unprepared: AtomicBool,
+    /// The rules with an end counted the step of the open bracket: another
+    /// `prepare` before that step (the project's, then the one of the
+    /// hooks' own step) does not count it again.
+    counted: bool,
     /// A `ManifoldUpdate::Never` setting waits for `freeze_manifolds`.
     unsettled: bool,
     /// One did at `prepare`: `after_step` checks that it was settled.
@@ -372,6 +376,7 @@ impl RuleHooks {
                 stepped: AtomicBool::new(false),
                 own_step: false,
                 unprepared: AtomicBool::new(false),
+                counted: false,
                 unsettled: false,
                 owe_freeze: false,
                 census: Census::default(),

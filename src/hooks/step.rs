@@ -30,12 +30,14 @@ impl RuleHooks {
     /// Steps `world` with the rules: [`prepare`](Self::prepare), waking what
     /// the edits need awake, Rapier's step, and [`after_step`](Self::after_step).
     ///
+    /// A [`prepare`](Self::prepare) the project called since the last step
+    /// (to read [`stats`](Self::stats) or [`pair_rule`](Self::pair_rule)
+    /// before it) is part of this step: the rules with an end count it once.
+    ///
     /// # Panics
     ///
-    /// If the project called [`prepare`](Self::prepare) itself since the
-    /// last step (this step would count twice against every rule with an
-    /// end), or if the world's `integration_parameters.dt` is negative,
-    /// infinite or not a number. The same holds for
+    /// If the world's `integration_parameters.dt` is negative, infinite or
+    /// not a number. The same holds for
     /// [`step_with_events`](Self::step_with_events) and
     /// [`step_pipeline`](Self::step_pipeline).
     #[track_caller]
@@ -174,17 +176,10 @@ impl RuleHooks {
     /// A step of a world the rules do not reach: no collider carries the
     /// hook flag, so Rapier never calls the hook.
     #[inline]
-    /// What a step of the hooks' own is given: no bracket of the
-    /// project's open (its `prepare` would count this step twice against
-    /// every rule with an end), and a timestep the ends can count.
+    /// What a step of the hooks' own is given: a timestep the ends can
+    /// count.
     #[track_caller]
     fn check_own_step(&self, dt: Real) {
-        assert!(
-            !self.boundary.prepared,
-            "RuleHooks::prepare was called before RuleHooks::step (or step_pipeline), which \
-             calls it itself: every rule with an end would count this step twice. Call step \
-             alone, or prepare, freeze_manifolds and wake_edited, Rapier's step, and after_step"
-        );
         assert!(
             counts(dt),
             "IntegrationParameters::dt is {dt}: the rules with an end count the world's \

@@ -28,6 +28,7 @@ impl RuleHooks {
         joints: Option<Joints<'_>>,
         quiet: bool,
     ) {
+        self.boundary.counted = false;
         if !std::mem::take(&mut self.boundary.prepared) {
             missing(
                 "prepare",

@@ -203,7 +203,7 @@ fn step_pipeline_is_step_on_bare_sets() {
 fn a_forgotten_call_fails_loudly_and_names_it() {
     // (what the user does, the call the message names)
     type Misuse = fn(&mut Crossing, &mut RuleHooks);
-    let table: [(&str, Misuse, &str); 6] = [
+    let table: [(&str, Misuse, &str); 5] = [
         (
             "after_step without prepare",
             |s, hooks| {
@@ -250,18 +250,7 @@ fn a_forgotten_call_fails_loudly_and_names_it() {
             },
             "RuleHooks::freeze_manifolds",
         ),
-        // Found by a misuse audit: every rule with an end counted the step
-        // twice, silently.
-        (
-            "prepare, then the hooks' own step",
-            |s, hooks| {
-                let w = &mut s.world;
-                hooks.prepare(&w.bodies, &mut w.colliders);
-                hooks.step(w);
-            },
-            "which calls it itself",
-        ),
-        // Found by the same audit: one step of a NaN timestep left every
+        // Found by a misuse audit: one step of a NaN timestep left every
         // `Until::seconds` counting NaN for good.
         (
             "a timestep that is not a number",
@@ -542,4 +531,33 @@ fn a_live_pair_whose_rule_is_defer_has_a_manifold_setting() {
     }
     assert_eq!(hooks.pair_rule(&world, shot, deck), Some(CollisionRule::Defer));
     assert_eq!(hooks.manifold_update(&world, shot, deck), Some(ManifoldUpdate::ByRule));
+}
+
+/// Found by a misuse audit: a `prepare` the project called before the
+/// hooks' own step (to read the stats or a pair's rule first; the paired
+/// benches did it to plan each step's changes untimed) counted the step
+/// again against every rule with an end: `Until::steps(6)` held 3 steps.
+/// The step's brackets count once, however many `prepare` calls they hold.
+#[test]
+fn a_prepare_before_the_hooks_own_step_counts_with_it_once() {
+    use super::rules::Until;
+    for prepares in 0..3 {
+        let (mut world, deck, _, shot) = ball_over_floor();
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_specific_until(
+            shot,
+            deck,
+            CollisionRule::NoResponse,
+            Until::steps(6).even_if_overlapping(),
+        );
+        let mut held = 0;
+        for _ in 0..12 {
+            for _ in 0..prepares {
+                hooks.prepare(&world.bodies, &mut world.colliders);
+            }
+            hooks.step(&mut world);
+            held += usize::from(hooks.rules().specific(shot, deck) == CollisionRule::NoResponse);
+        }
+        assert_eq!(held, 6, "{prepares} prepare calls before each step: steps after which the rule held");
+    }
 }

@@ -555,8 +555,10 @@ impl PhysicsHooks for ProjectHooks {
     }
 }
 
-#[test]
-fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
+/// A platform at height 2 with the project's one-way hook (user data 1),
+/// and a ball thrown up through it from below: the world, the platform's
+/// body and collider, and the ball.
+fn project_platform() -> (PhysicsWorld, RigidBodyHandle, ColliderHandle, RigidBodyHandle) {
     let mut world = PhysicsWorld::new();
     let platform = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, 2.0)));
     let deck = world.insert_collider(
@@ -565,13 +567,19 @@ fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
             .user_data(1),
         Some(platform),
     );
-    // A ball thrown up through the platform, and a ghost dropped onto it.
     let ball = world.insert_body(
         RigidBodyBuilder::dynamic()
             .translation(at(-1.0, 0.0))
             .linvel(at(0.0, 8.0)),
     );
     world.insert_collider(ColliderBuilder::ball(0.25), Some(ball));
+    (world, platform, deck, ball)
+}
+
+#[test]
+fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
+    // The ball thrown up through the platform, and a ghost dropped onto it.
+    let (mut world, platform, deck, ball) = project_platform();
     let ghost = world.insert_body(RigidBodyBuilder::dynamic().translation(at(1.0, 3.0)));
     let g = world.insert_collider(ColliderBuilder::ball(0.25), Some(ghost));
     let mut hooks = RuleHooks::default();
@@ -604,21 +612,7 @@ fn a_one_way_platform_of_the_project_beside_a_ghost_the_rules_let_through() {
 /// field without them, and both surfaces apply.
 #[test]
 fn the_projects_one_way_hook_on_a_surface_of_the_rules_sees_only_its_own_state() {
-    let mut world = PhysicsWorld::new();
-    let platform = world.insert_body(RigidBodyBuilder::fixed().translation(at(0.0, 2.0)));
-    world.insert_collider(
-        cuboid(4.0, 0.1, 4.0)
-            .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS)
-            .user_data(1),
-        Some(platform),
-    );
-    // Thrown up through the platform from below.
-    let ball = world.insert_body(
-        RigidBodyBuilder::dynamic()
-            .translation(at(-1.0, 0.0))
-            .linvel(at(0.0, 8.0)),
-    );
-    world.insert_collider(ColliderBuilder::ball(0.25), Some(ball));
+    let (mut world, platform, _, ball) = project_platform();
     let mut hooks = RuleHooks::default();
     hooks
         .rules_mut()

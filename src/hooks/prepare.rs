@@ -9,7 +9,7 @@ use super::super::rapier::prelude::*;
 
 use super::step::missing;
 use super::super::world::Mark;
-use super::{PairKey, PlanCause, RecalculationPolicy, RuleHooks};
+use super::{PairKey, PlanCause, RecalculationPolicy, RuleHooks, WorldRef};
 use super::super::planner::{self, personal::first_personal, room::Room};
 use super::super::{CollisionRule, FullPass, Node, StepStats};
 
@@ -98,6 +98,7 @@ impl RuleHooks {
         colliders: &mut ColliderSet,
         narrow_phase: &NarrowPhase,
     ) {
+        self.seed_rule_events(WorldRef::new(narrow_phase, bodies, colliders));
         self.prepare_seeing(bodies, colliders, Some(narrow_phase));
     }
 

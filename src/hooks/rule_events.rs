@@ -134,16 +134,21 @@ pub(super) struct Recording {
     /// The colliders under the nodes this step's edits touched: the pairs
     /// the hooks do not decide are calculated again only where they reach.
     reached: HashSet<ColliderHandle>,
+    /// The hooks started over on another world: its live pairs, read from
+    /// its graph before its first step, are what that step is compared with.
+    seed: bool,
 }
 
 impl Recording {
     /// The recording of hooks that start over on another world: the
     /// handler and the events not yet drained stay; the live pairs are the
-    /// new world's, told as started after its first step.
+    /// new world's, read before its first step where the hooks see its
+    /// graph (see [`RuleHooks::seed_rule_events`]).
     pub(super) fn started_over(self) -> Recording {
         Recording {
             events: self.events,
             handler: self.handler,
+            seed: true,
             ..Recording::default()
         }
     }
@@ -249,6 +254,27 @@ impl RuleHooks {
                 Some(reached) => recording.reached.extend(reached.iter().copied()),
             }
         }
+    }
+
+    /// The first step of hooks that started over on another world (a
+    /// quickload, a rollback): the live pairs its graph holds, with the
+    /// rules as they are before the step, are what the step is compared
+    /// with, as the step after the save was in the run that saved it. A
+    /// loaded world's graph holds the pairs it was saved with; overrides are
+    /// not saved, so a pair that had one is compared with its rule.
+    pub(super) fn seed_rule_events(&mut self, world: WorldRef<'_>) {
+        let Some(mut recording) = self.recording.take() else {
+            return;
+        };
+        if std::mem::take(&mut recording.seed) {
+            for (a, b) in self.held_pairs(world) {
+                let key = PairKey::new(a, b);
+                let kinds = key.kinds(world.bodies, world.colliders);
+                let rule = self.held_rule(world, a, b, || self.resolve(world.bodies, world.colliders, a, b));
+                recording.live.insert(key, (rule, kinds));
+            }
+        }
+        self.recording = Some(recording);
     }
 
     /// With [`Recording`] on, compares the live pairs after this step with

@@ -49,6 +49,7 @@ impl RuleHooks {
     #[track_caller]
     pub fn step_with_events(&mut self, world: &mut PhysicsWorld, events: &dyn EventHandler) {
         self.check_own_step(world.integration_parameters.dt);
+        self.seed_rule_events((&*world).into());
         self.follow_soft_bodies(&world.soft_bodies, &world.bodies);
         if self.idle(&world.colliders) {
             // The same call as `world.step_with_events`, so that a world the
@@ -128,6 +129,7 @@ impl RuleHooks {
         events: &dyn EventHandler,
     ) {
         self.check_own_step(integration_parameters.dt);
+        self.seed_rule_events(WorldRef::new(narrow_phase, bodies, colliders));
         self.follow_soft_bodies(soft_bodies, bodies);
         self.boundary.dt = integration_parameters.dt;
         self.boundary.own_step = false;

@@ -96,6 +96,8 @@ impl RuleHooks {
             self.planned.plan.colliders.remove(handle);
         }
         self.planned.plan = plan;
+        let planned: Vec<ColliderHandle> = self.planned.plan.colliders.iter().map(|(h, _)| h).collect();
+        self.let_go_unnamed(bodies, colliders, &planned);
         self.queued.replan = None;
         self.queued.candidates.clear();
         self.planned.recount = true;
@@ -151,26 +153,34 @@ impl RuleHooks {
         }
         let mut planned = planned;
         self.write_in_order(bodies, colliders, &mut planned);
-        let whole = all_hooked.is_some() || self.planned.plan.full.is_some();
-        for (handle, entry) in planned {
-            // Planned with Rapier's defaults, and no rule names it any more
-            // (the look let it go, or its last rule or the last entry about
-            // it went this step): the project's settings are back, and it
-            // is neither planned nor watched, as a whole plan leaves it.
-            let rules = &self.decide.rules;
-            if !whole
-                && entry.is_rapier_default()
-                && !named(rules, bodies, colliders, Node::Collider(handle))
-            {
-                if self.planned.plan.forget(handle) {
-                    self.queued.replan.get_or_insert(PlanCause::NewClass);
-                }
-                self.planned.roster.let_go(handle);
-                continue;
-            }
+        for &(handle, entry) in &planned {
             self.planned.plan.colliders.insert(handle, entry);
         }
+        let handles: Vec<ColliderHandle> = planned.iter().map(|&(h, _)| h).collect();
+        self.let_go_unnamed(bodies, colliders, &handles);
         self.planned.recount = true;
+    }
+
+    /// Lets go of those of the just planned `handles` that the plan need not
+    /// keep: planned with Rapier's defaults, and named by no rule (the look
+    /// let them go, or their last rule or the last entry about them went
+    /// this step). Their project's settings are back; they are neither
+    /// planned nor watched any more, unless every collider is (a full
+    /// pass). The look runs before the step's edits are planned, so it
+    /// cannot tell these itself.
+    fn let_go_unnamed(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, handles: &[ColliderHandle]) {
+        if self.full_pass().is_some() || self.planned.plan.full.is_some() {
+            return;
+        }
+        for &handle in handles {
+            let default = self.planned.plan.colliders.get(handle).is_some_and(|e| e.is_rapier_default());
+            if default && !named(&self.decide.rules, bodies, colliders, Node::Collider(handle)) {
+                // Of a default class, which always counts as having members:
+                // forgetting it changes nothing else of the plan.
+                self.planned.plan.forget(handle);
+                self.planned.roster.let_go(handle);
+            }
+        }
     }
 
     /// Writes each collider's plan in the node order, whichever way the

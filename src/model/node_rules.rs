@@ -29,10 +29,7 @@ impl CollisionRuleSet {
     ///
     /// # Panics
     ///
-    /// If a group was not created by this rule set (nor is built in): its id
-    /// is past the groups this set created. A group of another rule set
-    /// whose id this set also has cannot be told from this set's own, and
-    /// is taken as it: use each set's groups with that set only.
+    /// As [`set_group_rule`](Self::set_group_rule).
     #[track_caller]
     pub fn set_group(&mut self, node: impl Into<Node>, group: Option<CollisionGroup>) {
         self.check_groups(group.as_slice());

@@ -855,7 +855,7 @@ fn a_group_of_fixed_colliders_set_apart_from_the_level_says_both_entries() {
 #[test]
 fn a_collider_no_rule_names_any_more_is_let_go() {
     use super::rules::Reach;
-    for how in ["owner removed", "entry removed", "parent link removed"] {
+    for how in ["owner removed", "entry removed", "entry removed, whole plan", "parent link removed"] {
         let mut scene = Scene::new();
         let (_, wall) = scene.cube(2.0, 0.5);
         let (ghost, shot) = scene.cube(0.0, 0.5);
@@ -881,6 +881,9 @@ fn a_collider_no_rule_names_any_more_is_let_go() {
                 scene.world.remove_body(ghost);
             } else {
                 hooks.rules_mut().remove_specific(ghost, wall);
+                if how == "entry removed, whole plan" {
+                    hooks.project_settings_changed();
+                }
             }
         }
         for _ in 0..3 {

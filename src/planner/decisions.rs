@@ -12,7 +12,6 @@
 //! and gives way to a hooked side where it is no longer exact; a hooked side
 //! is always exact.
 
-use hashbrown::hash_map::Entry;
 use hashbrown::{HashMap, HashSet};
 use smallvec::SmallVec;
 
@@ -22,7 +21,7 @@ use super::carriers::side_cost;
 use super::class::Class;
 use super::collider_plan::ColliderPlan;
 use super::plan::{Request, ordered};
-use super::super::model::{CollidersUnder, Decision, SmallSet};
+use super::super::model::{CollidersUnder, Decision, NodeMap, SmallSet};
 use super::super::world::Mark;
 use super::super::{CollisionRule, Node};
 
@@ -51,10 +50,10 @@ pub(crate) struct Base {
 pub(crate) struct Decisions {
     made: HashMap<(Node, Node), Decision>,
     /// The entries under each node.
-    listed: HashMap<Node, SmallSet<(Node, Node)>>,
+    listed: NodeMap<SmallSet<(Node, Node)>>,
     /// What the decisions say of each node they name: one record, read
     /// once for each node of a collider's chain.
-    says: HashMap<Node, Say>,
+    says: NodeMap<Say>,
     /// How many nodes carry each bit, and how many leave it out: a bit is
     /// a star, one node on one end and any number on the other, so that
     /// each of its carriers meets each node that leaves it out through an
@@ -183,12 +182,12 @@ impl Decisions {
 
     /// The entries listed under `node`, in no order.
     pub(super) fn listed(&self, node: Node) -> impl Iterator<Item = (Node, Node)> + '_ {
-        self.listed.get(&node).into_iter().flat_map(SmallSet::iter)
+        self.listed.get(node).into_iter().flat_map(SmallSet::iter)
     }
 
     /// How many entries are listed under `node`.
     fn listed_count(&self, node: Node) -> usize {
-        self.listed.get(&node).map_or(0, SmallSet::len)
+        self.listed.get(node).map_or(0, SmallSet::len)
     }
 
     /// Forgets every entry not in `keep` (sorted): a whole plan's entries.
@@ -249,7 +248,7 @@ impl Decisions {
 
     /// What the decisions say of `node`'s colliders.
     pub(super) fn footprint(&self, node: Node) -> Footprint {
-        self.says.get(&node).copied().unwrap_or_default().footprint()
+        self.says.get(node).copied().unwrap_or_default().footprint()
     }
 
     /// Whether `entry` has a decision.
@@ -301,10 +300,10 @@ impl Decisions {
 
     fn list(&mut self, entry: (Node, Node)) {
         for node in [entry.0, entry.1] {
-            match self.listed.entry(node) {
-                Entry::Occupied(mut listed) => listed.get_mut().insert(entry),
-                Entry::Vacant(place) => {
-                    place.insert(SmallSet::One(entry));
+            match self.listed.get_mut(node) {
+                Some(listed) => listed.insert(entry),
+                None => {
+                    self.listed.get_or_insert_with(node, || SmallSet::One(entry));
                 }
             }
         }
@@ -313,8 +312,8 @@ impl Decisions {
     fn forget(&mut self, entry: (Node, Node)) -> Option<Decision> {
         let decision = self.unmake(entry);
         for node in [entry.0, entry.1] {
-            if self.listed.get_mut(&node).is_some_and(|l| l.remove(entry)) {
-                self.listed.remove(&node);
+            if self.listed.get_mut(node).is_some_and(|l| l.remove(entry)) {
+                self.listed.remove(node);
             }
         }
         decision
@@ -332,7 +331,7 @@ impl Decisions {
                 self.count_in(carrying, Role::Carrying, kind, bit);
                 self.count_in(other, Role::Shared, kind, bit);
             }
-            Decision::Hooked { side } => self.says.entry(side).or_default().hooked += 1,
+            Decision::Hooked { side } => self.says.or_default(side).hooked += 1,
         }
         self.made.insert(entry, decision);
         self.journal.push((entry, Some(decision)));
@@ -352,7 +351,7 @@ impl Decisions {
                 self.count_out(other, Role::Shared, kind);
             }
             Decision::Hooked { side } => {
-                if let Some(say) = self.says.get_mut(&side) {
+                if let Some(say) = self.says.get_mut(side) {
                     say.hooked -= 1;
                 }
                 self.drop_if_silent(side);
@@ -364,7 +363,7 @@ impl Decisions {
     /// One more entry using `node`'s bit of `kind` in `role`, and one more
     /// node on the bit if `node` had none.
     fn count_in(&mut self, node: Node, role: Role, kind: usize, bit: u32) {
-        let users = self.says.entry(node).or_default().bits(role)[kind]
+        let users = self.says.or_default(node).bits(role)[kind]
             .get_or_insert(Users { bit, entries: 0 });
         users.entries += 1;
         if users.entries == 1 {
@@ -376,7 +375,7 @@ impl Decisions {
     /// One entry less using `node`'s bit of `kind` in `role`, and one node
     /// less on the bit if that was the last.
     fn count_out(&mut self, node: Node, role: Role, kind: usize) {
-        let Some(slot) = self.says.get_mut(&node).map(|say| &mut say.bits(role)[kind]) else {
+        let Some(slot) = self.says.get_mut(node).map(|say| &mut say.bits(role)[kind]) else {
             return;
         };
         let Some(users) = slot else {
@@ -402,14 +401,14 @@ impl Decisions {
 
     /// Forgets `node`'s record once the decisions say nothing of it.
     fn drop_if_silent(&mut self, node: Node) {
-        if self.says.get(&node).is_some_and(|say| *say == Say::default()) {
-            self.says.remove(&node);
+        if self.says.get(node).is_some_and(|say| *say == Say::default()) {
+            self.says.remove(node);
         }
     }
 
     /// The bit `node` carries (`Role::Carrying`) or leaves out of `kind`.
     fn bit(&self, node: Node, role: Role, kind: usize) -> Option<u32> {
-        let say = self.says.get(&node)?;
+        let say = self.says.get(node)?;
         let bits = match role {
             Role::Carrying => &say.carrying,
             Role::Shared => &say.shared,
@@ -419,16 +418,16 @@ impl Decisions {
 
     /// Whether a decision hooks the colliders under `node`.
     fn hooks_side(&self, node: Node) -> bool {
-        self.says.get(&node).is_some_and(|say| say.hooked > 0)
+        self.says.get(node).is_some_and(|say| say.hooked > 0)
     }
 
     /// Every bit an entry uses.
     fn used(&self) -> Group {
-        self.says
-            .values()
-            .flat_map(|say| say.shared)
-            .flatten()
-            .fold(Group::empty(), |g, users| g | Group::from_bits_retain(1 << users.bit))
+        // The count of nodes on each bit says it without a walk of the
+        // nodes: a new entry asks this once per decision.
+        (0..32u32)
+            .filter(|&bit| self.others_on.iter().any(|on| on[bit as usize] > 0))
+            .fold(Group::empty(), |g, bit| g | Group::from_bits_retain(1 << bit))
     }
 
     /// Decides `entries` (sorted, each once) that have no decision or whose
@@ -944,7 +943,7 @@ impl Decisions {
             .hierarchy
             .chain(request.bodies, request.colliders, Node::Collider(c));
         for node in chain {
-            let Some(say) = self.says.get(&node) else {
+            let Some(say) = self.says.get(node) else {
                 continue;
             };
             if say.hooked > 0 {

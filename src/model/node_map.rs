@@ -1,0 +1,189 @@
+//! A side table keyed by nodes that looks a node up by its slot, as
+//! [`HandleMap`] does for one kind of handle: the planner reads its records
+//! of the nodes of every object that comes or goes, several times each,
+//! and a hash look-up there cost more than the rest of the work
+//! (`docs/performance.md`, "Run 47").
+
+use hashbrown::HashMap;
+
+use super::super::rapier::prelude::{ColliderHandle, RigidBodyHandle};
+
+use super::node::{HandleMap, Node};
+
+/// Values by node: in the slot of the node's handle, or, for a node whose
+/// slot holds another generation's value at the same time (an object Rapier
+/// removed whose records the planner has yet to forget, next to the new
+/// object in its slot), in a hash map that is empty in the common case.
+#[derive(Clone, Debug)]
+pub(crate) struct NodeMap<V> {
+    colliders: HandleMap<ColliderHandle, V>,
+    bodies: HandleMap<RigidBodyHandle, V>,
+    others: HashMap<Node, V>,
+    len: usize,
+}
+
+impl<V> Default for NodeMap<V> {
+    fn default() -> Self {
+        NodeMap {
+            colliders: HandleMap::default(),
+            bodies: HandleMap::default(),
+            others: HashMap::new(),
+            len: 0,
+        }
+    }
+}
+
+/// Where a node's value lives.
+enum Place {
+    Slot,
+    Other,
+}
+
+impl<V> NodeMap<V> {
+    #[inline]
+    pub(crate) fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Where `node`'s value is, or would be put.
+    #[inline]
+    fn place(&self, node: Node) -> Place {
+        let other = match node {
+            Node::Collider(c) => self.colliders.holds_other(c),
+            Node::Body(b) => self.bodies.holds_other(b),
+        };
+        if other { Place::Other } else { Place::Slot }
+    }
+
+    #[inline]
+    pub(crate) fn get(&self, node: Node) -> Option<&V> {
+        match self.place(node) {
+            Place::Slot => match node {
+                Node::Collider(c) => self.colliders.get(c),
+                Node::Body(b) => self.bodies.get(b),
+            },
+            Place::Other => self.others.get(&node),
+        }
+    }
+
+    #[inline]
+    pub(crate) fn get_mut(&mut self, node: Node) -> Option<&mut V> {
+        match self.place(node) {
+            Place::Slot => match node {
+                Node::Collider(c) => self.colliders.get_mut(c),
+                Node::Body(b) => self.bodies.get_mut(b),
+            },
+            Place::Other => self.others.get_mut(&node),
+        }
+    }
+
+    /// `node`'s value, made by `make` if it has none.
+    pub(crate) fn get_or_insert_with(&mut self, node: Node, make: impl FnOnce() -> V) -> &mut V {
+        let (value, inserted) = match self.place(node) {
+            Place::Slot => match node {
+                Node::Collider(c) => self.colliders.get_or_insert_with(c, make),
+                Node::Body(b) => self.bodies.get_or_insert_with(b, make),
+            },
+            Place::Other => {
+                let inserted = !self.others.contains_key(&node);
+                (self.others.entry(node).or_insert_with(make), inserted)
+            }
+        };
+        self.len += usize::from(inserted);
+        value
+    }
+
+    pub(crate) fn remove(&mut self, node: Node) -> Option<V> {
+        let removed = match self.place(node) {
+            Place::Slot => {
+                let removed = match node {
+                    Node::Collider(c) => self.colliders.remove(c),
+                    Node::Body(b) => self.bodies.remove(b),
+                };
+                if removed.is_some() && !self.others.is_empty() {
+                    self.promote(node.slot());
+                }
+                removed
+            }
+            Place::Other => self.others.remove(&node),
+        };
+        self.len -= usize::from(removed.is_some());
+        removed
+    }
+
+    /// Moves the value of another generation of a freed slot into it, so
+    /// that a node's value is in its slot whenever the slot is free.
+    fn promote(&mut self, slot: (bool, u32)) {
+        let Some(node) = self.others.keys().copied().find(|n| n.slot() == slot) else {
+            return;
+        };
+        let value = self.others.remove(&node).expect("a key just found");
+        let _ = match node {
+            Node::Collider(c) => self.colliders.get_or_insert_with(c, || value),
+            Node::Body(b) => self.bodies.get_or_insert_with(b, || value),
+        };
+    }
+
+    /// Every value, in no order. Walks every slot up to the highest one
+    /// used: for whole plans, never per object.
+    pub(crate) fn values(&self) -> impl Iterator<Item = &V> + '_ {
+        self.colliders
+            .iter()
+            .map(|(_, v)| v)
+            .chain(self.bodies.iter().map(|(_, v)| v))
+            .chain(self.others.values())
+    }
+}
+
+impl<V: Default> NodeMap<V> {
+    /// `node`'s value, a default one if it has none.
+    #[inline]
+    pub(crate) fn or_default(&mut self, node: Node) -> &mut V {
+        self.get_or_insert_with(node, V::default)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use super::super::node::Handle;
+
+    fn collider(index: u32, generation: u32) -> Node {
+        Node::Collider(ColliderHandle::from_raw(index, generation))
+    }
+
+    #[test]
+    fn two_generations_of_a_slot_keep_their_own_values() {
+        let mut map = NodeMap::<u8>::default();
+        let (old, new) = (collider(3, 0), collider(3, 1));
+        *map.or_default(old) = 7;
+        *map.or_default(new) = 9;
+        assert_eq!((map.get(old), map.get(new), map.values().count()), (Some(&7), Some(&9), 2));
+        assert_eq!(map.remove(old), Some(7));
+        assert_eq!((map.get(old), map.get(new), map.values().count()), (None, Some(&9), 1));
+        assert_eq!(map.remove(new), Some(9));
+        assert!(map.is_empty());
+        // The slot is free again for either generation.
+        *map.or_default(old) = 1;
+        assert_eq!((map.get(old), map.get(new)), (Some(&1), None));
+        // Three generations at once, removed oldest first.
+        *map.or_default(new) = 2;
+        *map.or_default(collider(3, 2)) = 3;
+        assert_eq!(map.remove(old), Some(1));
+        *map.or_default(new) += 10;
+        assert_eq!(map.remove(collider(3, 2)), Some(3));
+        assert_eq!((map.get(new), map.values().count()), (Some(&12), 1));
+    }
+
+    #[test]
+    fn a_collider_and_a_body_of_one_slot_are_two_nodes() {
+        let mut map = NodeMap::<u8>::default();
+        let body = Node::Body(RigidBodyHandle::from_raw(3, 0));
+        *map.or_default(collider(3, 0)) = 1;
+        *map.or_default(body) = 2;
+        assert_eq!((map.get(collider(3, 0)), map.get(body)), (Some(&1), Some(&2)));
+        let mut values: Vec<u8> = map.values().copied().collect();
+        values.sort_unstable();
+        assert_eq!(values, [1, 2]);
+    }
+}

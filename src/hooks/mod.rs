@@ -224,6 +224,10 @@ struct Boundary {
     /// `prepare` before that step (the project's, then the one of the
     /// hooks' own step) does not count it again.
     counted: bool,
+    /// `follow_soft_bodies` ran since the last `after_step`: a bracket
+    /// without it, in a world with soft bodies, left `NoResponse` to the
+    /// solver groups Rapier's soft-body solver does not read.
+    followed: bool,
     /// A `ManifoldUpdate::Never` setting waits for `freeze_manifolds`.
     unsettled: bool,
     /// One did at `prepare`: `after_step` checks that it was settled.
@@ -236,7 +240,7 @@ struct Boundary {
     /// response" in the last step, with its rule: if Rapier's graph shows
     /// another answer before the next step, or after a step that asked the
     /// hooks nothing, Rapier stepped without the hooks.
-    witness: Option<(PairKey, CollisionRule)>,
+    witness: Option<Witness>,
     /// A convex pair with a one-way surface whose contacts the hook dropped
     /// in this step, its manifold's standing forbidden (the first the hook
     /// met; `one_way_noting` says one was): at `after_step` it becomes
@@ -254,6 +258,18 @@ struct Boundary {
     reported_foreign_marks: bool,
     /// How long a step is, for rules given for a time.
     dt: Real,
+}
+
+/// The witness pair of a step (see [`Boundary::witness`]).
+#[derive(Clone, Copy, Debug)]
+struct Witness {
+    key: PairKey,
+    /// Its rule.
+    rule: CollisionRule,
+    /// The rule the hook's answer says in Rapier's graph: `NoContacts` for a
+    /// soft-rigid `NoResponse` pair, which Rapier's soft-body solver gets no
+    /// contacts of (`docs/semantics.md`, "Soft bodies"); else its rule.
+    answered_as: CollisionRule,
 }
 
 /// The work queued for the next step.
@@ -381,6 +397,7 @@ impl RuleHooks {
                 owe_freeze: false,
                 census: Census::default(),
                 witness: None,
+                followed: false,
                 one_way_noted: Mutex::new(None),
                 one_way_noting: AtomicBool::new(false),
                 one_way_witness: None,

@@ -37,9 +37,10 @@ impl RuleHooks {
     /// (removed, moved to another body, changed type, new colliders on a
     /// watched body), plans those colliders' flags and groups (every
     /// reached collider if anything they all depend on changed), and
-    /// recalculates live pairs as the policy says. Call
-    /// [`wake_edited`](Self::wake_edited) next, then step with these hooks,
-    /// then [`after_step`](Self::after_step).
+    /// recalculates live pairs as the policy says. In a world with soft
+    /// bodies, call [`follow_soft_bodies`](Self::follow_soft_bodies) before
+    /// it. Call [`wake_edited`](Self::wake_edited) next, then step with
+    /// these hooks, then [`after_step`](Self::after_step).
     ///
     /// Where Rapier's narrow phase is at hand, prefer
     /// [`prepare_with_graph`](Self::prepare_with_graph), as

@@ -56,6 +56,9 @@ pub(super) struct SoftBodies {
     pieces: Vec<SplitPiece>,
     /// The tears heard during steps since the last follow.
     tears: Arc<TearLog>,
+    /// A plan met a collider of a soft body's mesh since the last follow:
+    /// the world has soft bodies, whether or not the hooks were told.
+    meshes_planned: bool,
 }
 
 impl SoftBodies {
@@ -81,6 +84,18 @@ impl SoftBodies {
     pub(super) fn keep_tear_log(&mut self, old: &SoftBodies) {
         self.tears = Arc::clone(&old.tears);
         self.tears.clear();
+    }
+
+    /// A plan met a collider of a soft body's mesh.
+    pub(super) fn mesh_planned(&mut self) {
+        self.meshes_planned = true;
+    }
+
+    /// Whether the world has soft bodies, as far as the hooks can tell
+    /// without being told: they were told at the last follow, or a plan
+    /// has met a soft body's collider since.
+    pub(super) fn seen(&self) -> bool {
+        self.present || self.meshes_planned
     }
 
     /// Whether the hooks have seen soft body `handle`.
@@ -204,6 +219,8 @@ impl RuleHooks {
     /// ```
     #[inline]
     pub fn follow_soft_bodies(&mut self, soft_bodies: &SoftBodySet, bodies: &RigidBodySet) {
+        self.boundary.followed = true;
+        self.soft.meshes_planned = false;
         // A world that never had soft bodies: two compares a step.
         if soft_bodies.is_empty() && !self.soft.present {
             // A soft body inserted, torn and removed between two follows.

@@ -8,7 +8,7 @@ use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
 use super::step::missing;
-use super::{ManifoldUpdate, PairKey, PairState, PlanCause, RecalculationPolicy, RuleHooks};
+use super::{ManifoldUpdate, PairKey, PairState, PlanCause, RecalculationPolicy, RuleHooks, Witness};
 use super::super::CollisionRule;
 use super::super::model::soft_rigid;
 use super::super::planner::Plan;
@@ -37,6 +37,14 @@ impl RuleHooks {
             );
         }
         self.soft.forget_pieces();
+        if !std::mem::take(&mut self.boundary.followed) && self.soft.seen() {
+            missing(
+                "follow_soft_bodies",
+                "before prepare, in a world with soft bodies (without it a `NoResponse` of a soft \
+                 body is left to Rapier's solver groups, which its soft-body solver does not read, \
+                 and the pieces of cuts and tears have no rules)",
+            );
+        }
         if !self.queued.to_wake.is_empty() {
             missing("wake_edited", "before the step, after prepare");
         }
@@ -161,12 +169,12 @@ impl RuleHooks {
             // A pinned pair that ends leaves the side hooked for it: the
             // plan takes it back.
             pinned_ended |= !keep && state.is_pinned();
-            // Rapier answers a soft-rigid pair with its own solver: it
-            // cannot witness a step without the hooks.
+            // The hook answers a soft-rigid pair without response with no
+            // contacts, which a step without it shows as it shows them for
+            // `NoContacts`.
             let soft = keep && state.rule() == CollisionRule::NoResponse && soft_rigid(colliders, a, b);
             without_contacts += usize::from(soft);
             if keep
-                && !soft
                 && witness.is_none()
                 && state.answered_in(step)
                 && state.manifold == ManifoldUpdate::ByRule
@@ -175,7 +183,11 @@ impl RuleHooks {
                     CollisionRule::NoPair | CollisionRule::NoContacts | CollisionRule::NoResponse
                 )
             {
-                witness = Some((key, state.rule()));
+                witness = Some(Witness {
+                    key,
+                    rule: state.rule(),
+                    answered_as: if soft { CollisionRule::NoContacts } else { state.rule() },
+                });
             }
             // A body changed type (the hooks may not watch it): the rule
             // follows the default groups, and an override the special case.

@@ -6,7 +6,7 @@ use super::super::rapier::prelude::*;
 use std::sync::PoisonError;
 use std::sync::atomic::Ordering;
 
-use super::{PairKey, RuleHooks};
+use super::{PairKey, RuleHooks, Witness};
 use super::super::CollisionRule;
 use super::answer::answer_overridden;
 use super::one_way_contacts::forbids;
@@ -27,10 +27,10 @@ impl RuleHooks {
         {
             self.report_one_way_unhooked(key, "since their last step");
         }
-        let Some((key, rule)) = self.boundary.witness else {
+        let Some(Witness { key, rule, answered_as }) = self.boundary.witness else {
             return;
         };
-        if witness_overridden(narrow_phase, key, rule) {
+        if witness_overridden(narrow_phase, key, answered_as) {
             let (a, b) = key.colliders();
             let (a, b) = (Named(a.into()), Named(b.into()));
             self.report_unhooked(&format!(
@@ -89,7 +89,7 @@ impl RuleHooks {
                 self.report_one_way_unhooked(key, "between their `prepare` and `after_step`");
             }
         }
-        let Some((key, rule)) = witness else {
+        let Some(Witness { key, rule, answered_as }) = witness else {
             return;
         };
         let (a, b) = key.colliders();
@@ -101,7 +101,7 @@ impl RuleHooks {
             && colliders.contains(a)
             && colliders.contains(b)
             && (plan.hooks(a) || plan.hooks(b))
-            && witness_overridden(narrow_phase, key, rule)
+            && witness_overridden(narrow_phase, key, answered_as)
         {
             let (a, b) = (Named(a.into()), Named(b.into()));
             self.report_unhooked(&format!(
@@ -179,7 +179,7 @@ impl RuleHooks {
 }
 
 /// Whether Rapier's graph shows the witness pair with another answer than
-/// the hook's `rule`.
+/// the hook's for `rule` (the rule it answered as).
 fn witness_overridden(narrow_phase: &NarrowPhase, key: PairKey, rule: CollisionRule) -> bool {
     let (a, b) = key.colliders();
     narrow_phase

@@ -230,8 +230,12 @@ impl RuleHooks {
         let own = self.own_settings(handle, current);
         // A hooked soft surface also sees its soft-soft contacts, which a
         // `NoResponse` pair disables (`docs/semantics.md`, "Soft bodies").
+        let soft_mesh = current.deformable_mesh_ref().is_some();
+        if soft_mesh {
+            self.soft.mesh_planned();
+        }
         let modifying = self.planned.modifying.contains(&handle)
-            || (entry.hooked() && current.deformable_mesh_ref().is_some())
+            || (entry.hooked() && soft_mesh)
             || self.decide.rules.one_way_of(bodies, colliders, handle).is_some();
         let target = entry.combined(own, modifying);
         // The project changed a setting through Rapier: its pairs may have

@@ -1013,3 +1013,110 @@ fn the_pieces_of_a_cut_or_a_tear_keep_their_source_s_parent() {
         }
     }
 }
+
+/// A project that calls the parts of a step itself and leaves out
+/// `follow_soft_bodies`. Found by a soft-body game written from the docs
+/// alone: the hooks never learnt the world had soft bodies, wrote the
+/// jelly's `NoResponse` into solver groups that Rapier's soft-body solver
+/// does not read, and the jelly rested on the ground it should fall through,
+/// without a word. `after_step` now panics naming the call once the hooks
+/// know of soft bodies: a plan met the jelly's collider, or an earlier
+/// follow told them (`docs/semantics.md`, "Soft bodies", Stepping). The
+/// same brackets with the call step as `hooks.step` does, and say nothing.
+#[test]
+fn a_bracket_without_follow_soft_bodies_fails_loudly_and_names_it() {
+    use super::world::panic_message;
+    /// One bare bracket, with or without the follow.
+    fn bracket(world: &mut PhysicsWorld, hooks: &mut RuleHooks, follow: bool) {
+        if follow {
+            hooks.follow_soft_bodies(&world.soft_bodies, &world.bodies);
+        }
+        hooks.prepare(&world.bodies, &mut world.colliders);
+        hooks.freeze_manifolds(&world.narrow_phase);
+        hooks.wake_edited(&mut world.islands, &mut world.bodies);
+        world.step_with_events(&*hooks, &());
+        hooks.after_step(&world.narrow_phase, &world.bodies, &world.colliders);
+    }
+    let build = || {
+        let (mut world, ground) = on_ground();
+        let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
+        let root = world.soft_bodies[block].root_body();
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_specific(root, ground, CollisionRule::NoResponse);
+        (world, hooks, block)
+    };
+
+    // Followed at every bracket: as `hooks.step`, bit for bit.
+    let (mut world, mut hooks, block) = build();
+    let (mut stepped, mut own, _) = build();
+    for _ in 0..STEPS {
+        bracket(&mut world, &mut hooks, true);
+        own.step(&mut stepped);
+    }
+    assert_eq!(particles(&world, block), particles(&stepped, block), "the brackets step as hooks.step");
+    let fell = lowest(&world, block);
+    assert!(fell < -0.5, "the block falls through the ground: lowest particle at {fell}");
+
+    // Never followed, and followed once then left out.
+    for followed in [0, 3] {
+        let (mut world, mut hooks, _) = build();
+        for _ in 0..followed {
+            bracket(&mut world, &mut hooks, true);
+        }
+        let message = panic_message(|| bracket(&mut world, &mut hooks, false))
+            .unwrap_or_else(|| panic!("followed {followed} times, then left out: no panic"));
+        assert!(
+            message.contains("RuleHooks::follow_soft_bodies was not called") && message.contains("NoResponse"),
+            "followed {followed} times: the message names the call and what it does: {message}"
+        );
+    }
+}
+
+/// `world.step()` slipped in between two steps of the hooks, where a soft
+/// block sinks through the ground under `NoResponse`. Found by the same
+/// game: the hook answers a soft-rigid pair without response with no
+/// contacts, and that pair was never the witness of a step without the
+/// hooks, so the plain step pushed the block up unseen (a `NoContacts`
+/// pair was caught). It is the witness now, checked as the `NoContacts`
+/// answer it is (`docs/semantics.md`, "Stepping without the hooks"): a
+/// debug build panics at the next step, a release build warns and says so
+/// in that step's stats. With the hooks throughout nothing is said.
+#[test]
+fn a_step_without_the_hooks_is_caught_at_a_soft_pair_without_response() {
+    use super::world::panic_message;
+    let build = || {
+        let (mut world, ground) = on_ground();
+        let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
+        let root = world.soft_bodies[block].root_body();
+        let mut hooks = RuleHooks::default();
+        hooks.rules_mut().set_specific(root, ground, CollisionRule::NoResponse);
+        (world, hooks)
+    };
+    // Until the block is in the ground, its pairs live.
+    let sinking = 25;
+    let (mut world, mut hooks) = build();
+    let mut witnessed = 0;
+    for step in 0..STEPS {
+        hooks.step(&mut world);
+        assert!(!hooks.stats().stepped_without_hooks, "step {step}: stepped with the hooks, said without");
+        witnessed += usize::from(hooks.stats().soft_pairs_without_contacts > 0);
+    }
+    assert!(witnessed > 0, "the block's ground pairs were live without contacts");
+
+    let (mut world, mut hooks) = build();
+    for _ in 0..sinking {
+        hooks.step(&mut world);
+    }
+    assert!(hooks.stats().soft_pairs_without_contacts > 0, "the block is in the ground by step {sinking}");
+    world.step();
+    if !cfg!(debug_assertions) {
+        hooks.step(&mut world);
+        assert!(hooks.stats().stepped_without_hooks, "went unnoticed: {:?}", hooks.stats());
+        return;
+    }
+    let message = panic_message(|| hooks.step(&mut world)).unwrap_or_else(|| panic!("went unnoticed"));
+    assert!(
+        message.contains("NoResponse") && message.contains("never `world.step()`"),
+        "the message names the rule and the fix: {message}"
+    );
+}

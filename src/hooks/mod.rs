@@ -224,10 +224,12 @@ struct Boundary {
     /// `prepare` before that step (the project's, then the one of the
     /// hooks' own step) does not count it again.
     counted: bool,
-    /// `follow_soft_bodies` ran since the last `after_step`: a bracket
+    /// `follow_soft_bodies` ran since the last `after_step`, and it had
+    /// when the last `prepare` began: a bracket whose `prepare` planned
     /// without it, in a world with soft bodies, left `NoResponse` to the
     /// solver groups Rapier's soft-body solver does not read.
     followed: bool,
+    followed_at_prepare: bool,
     /// A `ManifoldUpdate::Never` setting waits for `freeze_manifolds`.
     unsettled: bool,
     /// One did at `prepare`: `after_step` checks that it was settled.
@@ -318,6 +320,17 @@ impl Planned {
     }
 }
 
+impl Planned {
+    /// How many of `handles` are watched and carry a hook flag the crate
+    /// gave them (each once in `handles`), as `hooked` counts them.
+    fn hooked_among(&self, handles: impl Iterator<Item = ColliderHandle>) -> usize {
+        let modifies = self.counted_modifies;
+        handles
+            .filter(|&c| self.roster.watches(c) && self.carries_hook(c, modifies))
+            .count()
+    }
+}
+
 impl RuleHooks {
     /// Whether the crate may give colliders contact modification (see
     /// [`Planned::carries_hook`]): one read, so that counting the hooked
@@ -337,11 +350,17 @@ struct Planned {
     plan: Plan,
     /// The colliders and bodies the hooks watch.
     roster: Roster,
-    /// How many colliders carry a hook flag the crate gave them.
+    /// How many watched colliders carry a hook flag the crate gave them:
+    /// kept up by the changes of a step (a plan of a few colliders, the
+    /// colliders that went), counted whole after a whole plan.
     hooked: usize,
-    /// A plan was written or watched colliders went since `hooked` was
-    /// counted: counted once, at the end of `prepare`.
+    /// A whole plan was written since `hooked` was counted: counted once,
+    /// at the end of `prepare`.
     recount: bool,
+    /// Whether the crate could give contact modification when `hooked` was
+    /// counted (see [`Planned::carries_hook`]): counted again when that
+    /// changes.
+    counted_modifies: bool,
     /// The colliders whose settings differ from the project's: what the
     /// project set and what the crate wrote.
     written: HandleMap<ColliderHandle, Written>,
@@ -398,6 +417,7 @@ impl RuleHooks {
                 census: Census::default(),
                 witness: None,
                 followed: false,
+                followed_at_prepare: false,
                 one_way_noted: Mutex::new(None),
                 one_way_noting: AtomicBool::new(false),
                 one_way_witness: None,
@@ -424,6 +444,7 @@ impl RuleHooks {
                 roster: Roster::default(),
                 hooked: 0,
                 recount: false,
+                counted_modifies: false,
                 written: HandleMap::default(),
                 modifying: HashSet::new(),
                 loaded: Vec::new(),

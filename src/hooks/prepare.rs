@@ -158,9 +158,7 @@ impl RuleHooks {
                 .to_wake
                 .extend(colliders.get(c).and_then(|c| c.parent()));
         }
-        if std::mem::take(&mut self.planned.recount) {
-            self.count_hooked();
-        }
+        self.count_hooked();
         self.stats.hooked_colliders = self.planned.hooked;
         self.stats.full_pass = self.planned.plan.full;
         self.stats.shares_project_bits = self.planned.plan.room.is_some();
@@ -175,6 +173,7 @@ impl RuleHooks {
             missing("after_step", "after the last step");
         }
         self.boundary.prepared = true;
+        self.boundary.followed_at_prepare = self.boundary.followed;
         *self.boundary.stepped.get_mut() = false;
         self.boundary.owe_freeze = self.boundary.unsettled;
         self.boundary.step += 1;
@@ -269,6 +268,13 @@ impl RuleHooks {
                     reached(rules, plan, bodies, colliders, node)
                 })
         };
+        // The colliders that went leave the hooked count (see
+        // `count_hooked`): the look no longer watches them, their plans and
+        // writes are still here.
+        let modifies = self.planned.counted_modifies;
+        let left = look.removed_colliders.iter().map(|&(c, _)| c).chain(look.released.iter().copied());
+        let left_hooked = left.filter(|&c| self.planned.carries_hook(c, modifies)).count();
+        self.planned.hooked = self.planned.hooked.saturating_sub(left_hooked);
         let ended = self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
         changed.nodes.extend(ended);
         for &c in &look.released {
@@ -280,9 +286,6 @@ impl RuleHooks {
         // to the project's settings: an edit that touched its node plans it
         // anyway, but a global edit names no node.
         self.queued.candidates.extend(look.released.iter().copied());
-        if !(look.removed_colliders.is_empty() && look.released.is_empty()) {
-            self.planned.recount = true;
-        }
         changed.nodes.extend(look.changed);
         // Forgetting a removed parent changes its children's chains.
         let removal_changes = self.decide.rules.take_changes();

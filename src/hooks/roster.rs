@@ -145,7 +145,8 @@ impl<H: Handle, K> Watched<H, K> {
     fn retain(&mut self, mut keep: impl FnMut(H, Option<&mut K>) -> bool) {
         let Watched { list, at, holes } = self;
         // An iterator, not indices: the look walks every watched object
-        // each step, and the bounds checks were a sixth of its work.
+        // each step, and indexing cost 8% of its instructions
+        // (`docs/performance.md`, "Run 47").
         for (i, (handle, entry)) in list.iter_mut().enumerate() {
             let handle = *handle;
             let kept = match entry {
@@ -215,6 +216,12 @@ impl Roster {
     #[inline]
     pub(crate) fn body_count(&self) -> usize {
         self.bodies.len()
+    }
+
+    /// Whether `collider` is watched.
+    #[inline]
+    pub(crate) fn watches(&self, collider: ColliderHandle) -> bool {
+        self.colliders.get(collider).is_some()
     }
 
     /// The watched colliders, in the order they were first watched.

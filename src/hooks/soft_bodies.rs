@@ -92,10 +92,12 @@ impl SoftBodies {
     }
 
     /// Whether the world has soft bodies, as far as the hooks can tell
-    /// without being told: they were told at the last follow, or a plan
-    /// has met a soft body's collider since.
-    pub(super) fn seen(&self) -> bool {
-        self.present || self.meshes_planned
+    /// without being told: a plan has met a soft body's collider since the
+    /// last follow, or a soft body the last follow saw is still there (its
+    /// root body is: Rapier removes the root with the soft body).
+    pub(super) fn seen(&self, bodies: &RigidBodySet) -> bool {
+        self.meshes_planned
+            || (self.present && self.known.values().any(|seen| bodies.contains(seen.root)))
     }
 
     /// Whether the hooks have seen soft body `handle`.
@@ -531,6 +533,8 @@ impl RuleHooks {
             };
             if let Some(written) = written {
                 self.keep_written(copy, Some(written));
+                // The copy may carry a hook flag before any plan of it.
+                self.planned.recount = true;
             }
         }
     }

@@ -20,7 +20,8 @@ pub(super) fn missing(call: &str, when: &str) -> ! {
     panic!(
         "RuleHooks::{call} was not called {when}: without it the rules do not \
          hold. Step with RuleHooks::step, RuleHooks::step_pipeline, or call \
-         follow_soft_bodies (with soft bodies), prepare, freeze_manifolds and wake_edited \
+         follow_soft_bodies (where there are or were soft bodies), prepare, freeze_manifolds \
+         and wake_edited \
          before PhysicsPipeline::step and after_step after it"
     )
 }
@@ -191,6 +192,8 @@ impl RuleHooks {
 
     fn count_idle_step(&mut self) {
         self.boundary.step += 1;
+        // The step's follow served this step, which closes here.
+        self.boundary.followed = false;
         self.stats = StepStats {
             shares_project_bits: self.planned.plan.room.is_some(),
             ..StepStats::default()

@@ -37,11 +37,12 @@ impl RuleHooks {
             );
         }
         self.soft.forget_pieces();
-        if !std::mem::take(&mut self.boundary.followed) && self.soft.seen() {
+        self.boundary.followed = false;
+        if !self.boundary.followed_at_prepare && self.soft.seen(bodies) {
             missing(
                 "follow_soft_bodies",
-                "before prepare, in a world with soft bodies (without it a `NoResponse` of a soft \
-                 body is left to Rapier's solver groups, which its soft-body solver does not read, \
+                "before prepare, in a world with soft bodies (a `NoResponse` of a soft body is \
+                 then left to Rapier's solver groups, which its soft-body solver does not read, \
                  and the pieces of cuts and tears have no rules)",
             );
         }

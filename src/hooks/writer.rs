@@ -148,6 +148,9 @@ impl RuleHooks {
             return self.apply_plan(bodies, colliders, graph, PlanCause::NewClass);
         };
         self.stats.planned_colliders = planned.len();
+        // The planned colliders' share of the hooked count, before and
+        // after their plan (see `count_hooked`).
+        let hooked_before = self.planned.hooked_among(planned.iter().map(|&(h, _)| h));
         for &(handle, _) in &planned {
             self.planned.roster.watch_collider(bodies, colliders, handle);
         }
@@ -158,7 +161,8 @@ impl RuleHooks {
         }
         let handles: Vec<ColliderHandle> = planned.iter().map(|&(h, _)| h).collect();
         self.let_go_unnamed(bodies, colliders, &handles);
-        self.planned.recount = true;
+        let hooked_after = self.planned.hooked_among(handles.iter().copied());
+        self.planned.hooked = (self.planned.hooked + hooked_after).saturating_sub(hooked_before);
     }
 
     /// Lets go of those of the just planned `handles` that the plan need not
@@ -201,14 +205,22 @@ impl RuleHooks {
         }
     }
 
+    /// Counts the watched colliders that carry a hook flag the crate gave
+    /// them, after a whole plan or when the crate's contact modification
+    /// came or went; other steps keep the count up as they change it
+    /// (which a debug build checks against a count of every one).
     pub(super) fn count_hooked(&mut self) {
         let modifies = self.modifies_contacts();
-        self.planned.hooked = self
-            .planned
-            .roster
-            .colliders()
-            .filter(|&c| self.planned.carries_hook(c, modifies))
-            .count();
+        if !std::mem::take(&mut self.planned.recount) && modifies == self.planned.counted_modifies {
+            debug_assert_eq!(
+                self.planned.hooked,
+                self.planned.hooked_among(self.planned.roster.colliders()),
+                "the hooked colliders kept up by the step's changes"
+            );
+            return;
+        }
+        self.planned.counted_modifies = modifies;
+        self.planned.hooked = self.planned.hooked_among(self.planned.roster.colliders());
     }
 
     /// Gives one collider its plan entry combined with the project's own

@@ -81,7 +81,7 @@ pub(super) struct Footprint {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Users {
     bit: u32,
-    entries: usize,
+    entries: u32,
 }
 
 /// What the decisions say of one node, with how many say it: how many hook
@@ -89,7 +89,7 @@ struct Users {
 /// out.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 struct Say {
-    hooked: usize,
+    hooked: u32,
     carrying: [Option<Users>; 2],
     shared: [Option<Users>; 2],
 }

@@ -1026,12 +1026,23 @@ fn the_pieces_of_a_cut_or_a_tear_keep_their_source_s_parent() {
 #[test]
 fn a_bracket_without_follow_soft_bodies_fails_loudly_and_names_it() {
     use super::world::panic_message;
-    /// One bare bracket, with or without the follow.
-    fn bracket(world: &mut PhysicsWorld, hooks: &mut RuleHooks, follow: bool) {
-        if follow {
+    /// Where a bracket follows the soft bodies.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    enum Follow {
+        Before,
+        Never,
+        /// After `prepare`, which planned without it.
+        After,
+    }
+    /// One bare bracket.
+    fn bracket(world: &mut PhysicsWorld, hooks: &mut RuleHooks, follow: Follow) {
+        if follow == Follow::Before {
             hooks.follow_soft_bodies(&world.soft_bodies, &world.bodies);
         }
         hooks.prepare(&world.bodies, &mut world.colliders);
+        if follow == Follow::After {
+            hooks.follow_soft_bodies(&world.soft_bodies, &world.bodies);
+        }
         hooks.freeze_manifolds(&world.narrow_phase);
         hooks.wake_edited(&mut world.islands, &mut world.bodies);
         world.step_with_events(&*hooks, &());
@@ -1050,25 +1061,37 @@ fn a_bracket_without_follow_soft_bodies_fails_loudly_and_names_it() {
     let (mut world, mut hooks, block) = build();
     let (mut stepped, mut own, _) = build();
     for _ in 0..STEPS {
-        bracket(&mut world, &mut hooks, true);
+        bracket(&mut world, &mut hooks, Follow::Before);
         own.step(&mut stepped);
     }
     assert_eq!(particles(&world, block), particles(&stepped, block), "the brackets step as hooks.step");
     let fell = lowest(&world, block);
     assert!(fell < -0.5, "the block falls through the ground: lowest particle at {fell}");
 
-    // Never followed, and followed once then left out.
-    for followed in [0, 3] {
+    // Never followed, followed then left out, or followed after the
+    // prepare it should have come before.
+    for (followed, then) in [(0, Follow::Never), (3, Follow::Never), (0, Follow::After), (3, Follow::After)] {
         let (mut world, mut hooks, _) = build();
         for _ in 0..followed {
-            bracket(&mut world, &mut hooks, true);
+            bracket(&mut world, &mut hooks, Follow::Before);
         }
-        let message = panic_message(|| bracket(&mut world, &mut hooks, false))
-            .unwrap_or_else(|| panic!("followed {followed} times, then left out: no panic"));
+        let message = panic_message(|| bracket(&mut world, &mut hooks, then))
+            .unwrap_or_else(|| panic!("followed {followed} times, then {then:?}: no panic"));
         assert!(
             message.contains("RuleHooks::follow_soft_bodies was not called") && message.contains("NoResponse"),
-            "followed {followed} times: the message names the call and what it does: {message}"
+            "followed {followed} times, then {then:?}: the message names the call and what it does: {message}"
         );
+    }
+
+    // Found by a review: a project that follows while there are soft
+    // bodies may stop once the last is gone.
+    let (mut world, mut hooks, block) = build();
+    for _ in 0..3 {
+        bracket(&mut world, &mut hooks, Follow::Before);
+    }
+    world.remove_soft_body(block);
+    for _ in 0..3 {
+        bracket(&mut world, &mut hooks, Follow::Never);
     }
 }
 

@@ -1014,6 +1014,16 @@ fn the_pieces_of_a_cut_or_a_tear_keep_their_source_s_parent() {
     }
 }
 
+/// A soft block over the ground, the pair `NoResponse`: it sinks through.
+fn sinking_block() -> (PhysicsWorld, RuleHooks, SoftBodyHandle) {
+    let (mut world, ground) = on_ground();
+    let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
+    let root = world.soft_bodies[block].root_body();
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_specific(root, ground, CollisionRule::NoResponse);
+    (world, hooks, block)
+}
+
 /// A project that calls the parts of a step itself and leaves out
 /// `follow_soft_bodies`. Found by a soft-body game written from the docs
 /// alone: the hooks never learnt the world had soft bodies, wrote the
@@ -1048,14 +1058,7 @@ fn a_bracket_without_follow_soft_bodies_fails_loudly_and_names_it() {
         world.step_with_events(&*hooks, &());
         hooks.after_step(&world.narrow_phase, &world.bodies, &world.colliders);
     }
-    let build = || {
-        let (mut world, ground) = on_ground();
-        let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
-        let root = world.soft_bodies[block].root_body();
-        let mut hooks = RuleHooks::default();
-        hooks.rules_mut().set_specific(root, ground, CollisionRule::NoResponse);
-        (world, hooks, block)
-    };
+    let build = sinking_block;
 
     // Followed at every bracket: as `hooks.step`, bit for bit.
     let (mut world, mut hooks, block) = build();
@@ -1108,11 +1111,7 @@ fn a_bracket_without_follow_soft_bodies_fails_loudly_and_names_it() {
 fn a_step_without_the_hooks_is_caught_at_a_soft_pair_without_response() {
     use super::world::panic_message;
     let build = || {
-        let (mut world, ground) = on_ground();
-        let block = world.insert_soft_body(soft_block(at(0.0, 0.8), 0.5));
-        let root = world.soft_bodies[block].root_body();
-        let mut hooks = RuleHooks::default();
-        hooks.rules_mut().set_specific(root, ground, CollisionRule::NoResponse);
+        let (world, hooks, _) = sinking_block();
         (world, hooks)
     };
     // Until the block is in the ground, its pairs live.

@@ -224,11 +224,11 @@ struct Boundary {
     /// `prepare` before that step (the project's, then the one of the
     /// hooks' own step) does not count it again.
     counted: bool,
-    /// `follow_soft_bodies` ran since the last `after_step`, and it had
-    /// when the last `prepare` began: a bracket whose `prepare` planned
-    /// without it, in a world with soft bodies, left `NoResponse` to the
-    /// solver groups Rapier's soft-body solver does not read.
+    /// `follow_soft_bodies` ran since the last `after_step`.
     followed: bool,
+    /// It had when the last `prepare` began: a bracket whose `prepare`
+    /// planned without it, in a world with soft bodies, left `NoResponse`
+    /// to the solver groups Rapier's soft-body solver does not read.
     followed_at_prepare: bool,
     /// A `ManifoldUpdate::Never` setting waits for `freeze_manifolds`.
     unsettled: bool,
@@ -318,9 +318,7 @@ impl Planned {
                     (w.wrote.hooks - w.own.hooks).contains(ActiveHooks::MODIFY_SOLVER_CONTACTS)
                 })
     }
-}
 
-impl Planned {
     /// How many of `handles` are watched and carry a hook flag the crate
     /// gave them (each once in `handles`), as `hooked` counts them.
     fn hooked_among(&self, handles: impl Iterator<Item = ColliderHandle>) -> usize {

@@ -20,9 +20,9 @@ pub(super) fn missing(call: &str, when: &str) -> ! {
     panic!(
         "RuleHooks::{call} was not called {when}: without it the rules do not \
          hold. Step with RuleHooks::step, RuleHooks::step_pipeline, or call \
-         follow_soft_bodies (where there are or were soft bodies), prepare, freeze_manifolds \
-         and wake_edited \
-         before PhysicsPipeline::step and after_step after it"
+         follow_soft_bodies (where there are or were soft bodies), prepare, \
+         freeze_manifolds and wake_edited before PhysicsPipeline::step and \
+         after_step after it"
     )
 }
 

@@ -55,19 +55,27 @@ impl<V> NodeMap<V> {
         if other { Place::Other } else { Place::Slot }
     }
 
+    /// `node`'s value: one look at its slot, where it is unless the slot
+    /// holds another generation's (then `others`, empty in the common case,
+    /// has it).
     #[inline]
     pub(crate) fn get(&self, node: Node) -> Option<&V> {
-        match self.place(node) {
-            Place::Slot => match node {
-                Node::Collider(c) => self.colliders.get(c),
-                Node::Body(b) => self.bodies.get(b),
-            },
-            Place::Other => self.others.get(&node),
-        }
+        let in_slot = match node {
+            Node::Collider(c) => self.colliders.get(c),
+            Node::Body(b) => self.bodies.get(b),
+        };
+        in_slot.or_else(|| if self.others.is_empty() { None } else { self.others.get(&node) })
     }
 
     #[inline]
     pub(crate) fn get_mut(&mut self, node: Node) -> Option<&mut V> {
+        // Without other generations every value is in its slot: one look.
+        if self.others.is_empty() {
+            return match node {
+                Node::Collider(c) => self.colliders.get_mut(c),
+                Node::Body(b) => self.bodies.get_mut(b),
+            };
+        }
         match self.place(node) {
             Place::Slot => match node {
                 Node::Collider(c) => self.colliders.get_mut(c),
@@ -173,6 +181,51 @@ mod tests {
         *map.or_default(new) += 10;
         assert_eq!(map.remove(collider(3, 2)), Some(3));
         assert_eq!((map.get(new), map.values().count()), (Some(&12), 1));
+    }
+
+    /// Random inserts, edits and removals over a few slots, generations
+    /// and both kinds, against a hash map keyed by node.
+    #[test]
+    fn it_answers_as_a_hash_map_keyed_by_node() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = |n: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % n
+        };
+        for _ in 0..200 {
+            let mut map = NodeMap::<u32>::default();
+            let mut reference = HashMap::<Node, u32>::new();
+            for step in 0..500 {
+                let (index, generation) = (next(4) as u32, next(4) as u32);
+                let node = if next(2) == 0 {
+                    collider(index, generation)
+                } else {
+                    Node::Body(RigidBodyHandle::from_raw(index, generation))
+                };
+                match next(3) {
+                    0 => {
+                        *map.or_default(node) += step;
+                        *reference.entry(node).or_default() += step;
+                    }
+                    1 => assert_eq!(map.remove(node), reference.remove(&node), "remove {node:?}"),
+                    _ => {
+                        if let (Some(v), Some(r)) = (map.get_mut(node), reference.get_mut(&node)) {
+                            *v += 1;
+                            *r += 1;
+                        }
+                    }
+                }
+                assert_eq!(map.get(node), reference.get(&node), "{node:?} after step {step}");
+                assert_eq!(map.is_empty(), reference.is_empty());
+                let mut values: Vec<u32> = map.values().copied().collect();
+                let mut expected: Vec<u32> = reference.values().copied().collect();
+                values.sort_unstable();
+                expected.sort_unstable();
+                assert_eq!(values, expected, "the values after step {step}");
+            }
+        }
     }
 
     #[test]

@@ -1,11 +1,14 @@
 //! What the hooks watch between steps: the colliders and bodies the rules
-//! reach (every collider during a full pass). Rapier tells nobody what
-//! changed, so the hooks look, before each step, at what they watch and
-//! nothing else: objects removed, colliders moved to another body, bodies
-//! that changed type, colliders added to a watched body. The cost of a
-//! step's look is proportional to what is watched, not to the world
-//! (`docs/architecture.md`, "Cost per step").
+//! reach (every collider during a full pass). Rapier lists what changed for
+//! its own pipeline only, so the hooks look, before each step, at what they
+//! watch and nothing else: objects removed, colliders moved to another
+//! body, bodies that changed type, colliders added to a watched body, the
+//! project's settings changed. An object without Rapier's change flag is
+//! not read further (`docs/architecture.md`, "Rapier's change flags"). The
+//! cost of a step's look is proportional to what is watched, not to the
+//! world (`docs/architecture.md`, "Cost per step").
 
+use super::super::rapier::data::HasModifiedFlag;
 use super::super::rapier::prelude::*;
 
 use super::super::Node;
@@ -46,6 +49,62 @@ struct KnownBody {
 pub(crate) struct Roster {
     colliders: Watched<ColliderHandle, Known>,
     bodies: Watched<RigidBodyHandle, KnownBody>,
+    /// Where the newest watched objects were when the hooks' last step
+    /// ended; `None` until a step ends, and after each look.
+    stamp: Option<Stamp>,
+    /// Looks since the last that read every watched object.
+    looks_since_full: u32,
+}
+
+/// Every how many looks the watched objects are all read, whatever their
+/// change flags say: what a project does behind the flags' back (a world
+/// put in place without `world_replaced` where the old one was, a step
+/// without the hooks) is read within this many steps
+/// (`docs/architecture.md`, "Rapier's change flags").
+const FULL_LOOK_EVERY: u32 = 32;
+
+/// The collider count of a body not yet looked at, which no body has: the
+/// first look lists its colliders.
+const UNCOUNTED: usize = usize::MAX;
+
+/// What a debug build says when a watched object changed with no flag.
+const UNFLAGGED: &str = "a watched object changed without Rapier's change flag since the hooks' \
+     last step: Rapier stepped without the RuleHooks (step with `hooks.step(&mut world)`, never \
+     `world.step()`), or a world was put in place of theirs without `hooks.world_replaced()`";
+
+/// The newest watched collider and body, each with the address Rapier keeps
+/// it at: a world put in place of the hooks' one holds its objects
+/// elsewhere (or not at all), so an unchanged stamp says the flags Rapier
+/// cleared at the end of the hooks' last step are the ones the look reads.
+#[derive(Clone, Copy, Debug)]
+struct Stamp {
+    collider: Option<(ColliderHandle, usize)>,
+    body: Option<(RigidBodyHandle, usize)>,
+}
+
+impl Stamp {
+    fn of(roster: &Roster, bodies: &RigidBodySet, colliders: &ColliderSet) -> Stamp {
+        let collider = roster.colliders.newest().and_then(|handle| {
+            let at = colliders.get(handle)?;
+            Some((handle, std::ptr::from_ref(at).addr()))
+        });
+        let body = roster.bodies.newest().and_then(|handle| {
+            let at = bodies.get(handle)?;
+            Some((handle, std::ptr::from_ref(at).addr()))
+        });
+        Stamp { collider, body }
+    }
+
+    /// Whether the stamped objects are where they were: in the same world.
+    fn holds(self, bodies: &RigidBodySet, colliders: &ColliderSet) -> bool {
+        let collider_holds = self.collider.is_none_or(|(handle, at)| {
+            colliders.get(handle).map(|c| std::ptr::from_ref(c).addr()) == Some(at)
+        });
+        let body_holds = self.body.is_none_or(|(handle, at)| {
+            bodies.get(handle).map(|b| std::ptr::from_ref(b).addr()) == Some(at)
+        });
+        collider_holds && body_holds
+    }
 }
 
 /// The watched objects of one kind: each with what the hooks remember of it
@@ -104,6 +163,14 @@ impl<H: Handle, K> Watched<H, K> {
             Entry::Known(known) => Some(known),
             _ => None,
         }
+    }
+
+    /// The newest watched object.
+    fn newest(&self) -> Option<H> {
+        self.list.iter().rev().find_map(|(handle, entry)| match entry {
+            Entry::Known(_) => Some(*handle),
+            _ => None,
+        })
     }
 
     /// The watched handles, in the order they were first watched.
@@ -275,11 +342,10 @@ impl Roster {
             self.bodies.push_alone(body);
             return false;
         }
-        // A count no body has: the first look lists its colliders.
         let known = KnownBody {
             dynamic: dynamic_body(bodies, Some(body)),
             marked: false,
-            colliders: usize::MAX,
+            colliders: UNCOUNTED,
         };
         self.bodies.push(body, known);
         true
@@ -298,6 +364,18 @@ impl Roster {
     /// Stops watching `collider`: the rules no longer reach it.
     pub(crate) fn let_go(&mut self, collider: ColliderHandle) {
         self.colliders.let_go(collider);
+    }
+
+    /// A step of the hooks' own ended: until the next look, Rapier's change
+    /// flags say what the project changed (see `look`).
+    pub(crate) fn stepped(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) {
+        self.stamp = Some(Stamp::of(self, bodies, colliders));
+    }
+
+    /// The next look reads every watched object whatever its flags say:
+    /// Rapier stepped without the hooks, clearing flags they did not read.
+    pub(crate) fn read_all_next(&mut self) {
+        self.looks_since_full = FULL_LOOK_EVERY;
     }
 
     /// Marks a watched `node`: whether the rules still reach it is asked at
@@ -330,6 +408,21 @@ impl Roster {
         keep: impl Fn(Node) -> bool,
     ) -> Look {
         let mut look = Look::default();
+        // Rapier flags every object the project changes through its sets
+        // (`get_mut`, `insert`, `set_parent`, a removal's parent body, a
+        // body's type) and clears the flags as its step ends: an unflagged
+        // object the look asks nothing of is as the last look left it, so
+        // it costs a read of its flag (`docs/architecture.md`, "Rapier's
+        // change flags").
+        let stamp = self.stamp.take();
+        self.looks_since_full += 1;
+        let flags = !all
+            && !ask_all
+            && self.looks_since_full < FULL_LOOK_EVERY
+            && stamp.is_some_and(|stamp| stamp.holds(bodies, colliders));
+        if !flags {
+            self.looks_since_full = 0;
+        }
         if all {
             for (handle, _) in colliders.iter() {
                 if self.watch_collider(bodies, colliders, handle) {
@@ -345,6 +438,13 @@ impl Roster {
                 look.removed_bodies.push(handle);
                 return false;
             };
+            if flags && !was.marked && was.colliders != UNCOUNTED && !body.has_modified_flag() {
+                debug_assert!(
+                    was.dynamic == body.is_dynamic() && was.colliders == body.colliders().len(),
+                    "{UNFLAGGED}"
+                );
+                return true;
+            }
             if was.dynamic != body.is_dynamic() {
                 was.dynamic = body.is_dynamic();
                 look.changed.push(Node::Body(handle));
@@ -378,6 +478,23 @@ impl Roster {
                 look.removed_colliders.push((handle, body));
                 return false;
             };
+            if flags && !known.marked && !collider.has_modified_flag() {
+                // Its body is as it was, or retyped: the body's flag, read
+                // by the loop above for a watched one.
+                let is_dynamic = match known.body.and_then(|b| watched_bodies.get(b)) {
+                    Some(known_body) => known_body.dynamic,
+                    None => dynamic_body(bodies, known.body),
+                };
+                if is_dynamic == known.dynamic {
+                    debug_assert!(
+                        known.body == collider.parent()
+                            && known.wrote.is_none_or(|wrote| Settings::of(collider) == wrote)
+                            && Mark::on(collider) == known.crate_mark,
+                        "{UNFLAGGED}"
+                    );
+                    return true;
+                }
+            }
             if known
                 .wrote
                 .is_some_and(|wrote| Settings::of(collider) != wrote)

@@ -161,6 +161,9 @@ impl RuleHooks {
     #[cold]
     fn report_unhooked(&mut self, what: &str) {
         self.stats.stepped_without_hooks = true;
+        // That step cleared Rapier's change flags of what the project
+        // changed before it (`docs/architecture.md`, "Rapier's change flags").
+        self.planned.roster.read_all_next();
         let message = format!(
             "{what}. Step with `hooks.step(&mut world)` (or `hooks.step_pipeline(..)`, or pass \
              the hooks to `PhysicsPipeline::step` between `prepare` and `after_step`), never \

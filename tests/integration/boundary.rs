@@ -561,3 +561,56 @@ fn a_prepare_before_the_hooks_own_step_counts_with_it_once() {
         assert_eq!(held, 6, "{prepares} prepare calls before each step: steps after which the rule held");
     }
 }
+
+/// The look reads only what Rapier's change flags show changed since the
+/// hooks' last step (`docs/architecture.md`, "Rapier's change flags"). A
+/// `world.step()` that no witness sees (no pair is hooked) clears the flag
+/// of a change the project made before it: the change is read all the
+/// same, at the next step in a debug build (which stops there, naming the
+/// fix) and within 32 steps in a release build, after which an edit of the
+/// object's rules keeps it.
+#[test]
+fn a_change_a_step_without_the_hooks_hid_is_read_all_the_same() {
+    let (mut world, _, ball, shot) = ball_over_floor();
+    let marker = world.insert_body(RigidBodyBuilder::fixed().translation(at(50.0, 0.5)));
+    world.insert_collider(cuboid(0.5, 0.5, 0.5), Some(marker));
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_specific(ball, marker, CollisionRule::NoPair);
+    for _ in 0..5 {
+        hooks.step(&mut world);
+    }
+    let written = world.colliders[shot].collision_groups();
+    // The project's own change: the ball collides with nothing.
+    let own = InteractionGroups::new(Group::GROUP_1, Group::NONE, InteractionTestMode::And);
+    assert_ne!(written, own, "the crate wrote the ball's groups");
+    world.colliders[shot].set_collision_groups(own);
+    world.step();
+    if cfg!(debug_assertions) {
+        let message = panic_message(|| {
+            hooks.step(&mut world);
+        })
+        .expect("a debug build stops at the change the flags hid");
+        assert!(
+            message.contains("world.step()")
+                && message.contains("hooks.step(&mut world)")
+                && message.contains("hooks.world_replaced()"),
+            "the message names what happened and the fixes: {message}"
+        );
+        return;
+    }
+    let read = (1..=32).find(|_| {
+        hooks.step(&mut world);
+        hooks.stats().planned_colliders > 0
+    });
+    assert!(read.is_some(), "the change was not read in 32 steps");
+    hooks.rules_mut().set_specific(ball, marker, CollisionRule::NoContacts);
+    for _ in 0..60 {
+        hooks.step(&mut world);
+    }
+    let filter = world.colliders[shot].collision_groups().filter;
+    let y = world.bodies[ball].translation().y;
+    assert!(
+        filter == Group::NONE && y < -1.0,
+        "the project's filter kept (read at step {read:?}): filter {filter:?}, the ball at y = {y}"
+    );
+}

@@ -704,7 +704,10 @@ impl RuleHooks {
     /// Tells the hooks that the project changed, through Rapier, the
     /// collision groups, solver groups or collision types of colliders the
     /// rules do not reach. Changes on colliders the rules reach are noticed
-    /// by themselves, and so are colliders added or removed where the
+    /// by themselves (unless collision detection ran between the hooks'
+    /// steps after them, `world.detect_collisions`, which clears Rapier's
+    /// change flags the hooks read: call this after it, or they are read
+    /// within 32 steps), and so are colliders added or removed where the
     /// number of colliders changed (Rapier keeps its lists of added and
     /// removed colliders to its pipeline): after a step that removed as many
     /// colliders as it added, some of them with layers of their own, call

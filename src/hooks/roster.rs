@@ -68,42 +68,63 @@ const FULL_LOOK_EVERY: u32 = 32;
 const UNCOUNTED: usize = usize::MAX;
 
 /// What a debug build says when a watched object changed with no flag.
-const UNFLAGGED: &str = "a watched object changed without Rapier's change flag since the hooks' \
-     last step: Rapier stepped without the RuleHooks (step with `hooks.step(&mut world)`, never \
-     `world.step()`), or a world was put in place of theirs without `hooks.world_replaced()`";
+const UNFLAGGED: &str = "an object the rules reach changed since the hooks' last step, and \
+     Rapier's change flag does not show it (a step of Rapier's cleared it): Rapier stepped \
+     without the RuleHooks (step with `hooks.step(&mut world)`, never `world.step()`), or ran \
+     collision detection between their steps after the change (`world.detect_collisions`, a \
+     `CollisionPipeline`: call `hooks.project_settings_changed()` after it), or a world was put \
+     in place of theirs without `hooks.world_replaced()`";
 
-/// The newest watched collider and body, each with the address Rapier keeps
-/// it at: a world put in place of the hooks' one holds its objects
-/// elsewhere (or not at all), so an unchanged stamp says the flags Rapier
-/// cleared at the end of the hooks' last step are the ones the look reads.
-#[derive(Clone, Copy, Debug)]
+/// The oldest and newest watched collider and body, each with the address
+/// Rapier keeps it at. A world put in place of the hooks' one holds its
+/// objects elsewhere, or not at all: the stamp holds where the stamped
+/// objects still in the world are all where they were, and one is. Four, so
+/// that a game removing its oldest objects (a stream) or its newest (the
+/// last shot despawned) keeps one.
+#[derive(Clone, Copy, Debug, Default)]
 struct Stamp {
-    collider: Option<(ColliderHandle, usize)>,
-    body: Option<(RigidBodyHandle, usize)>,
+    colliders: [Option<(ColliderHandle, usize)>; 2],
+    bodies: [Option<(RigidBodyHandle, usize)>; 2],
 }
 
 impl Stamp {
     fn of(roster: &Roster, bodies: &RigidBodySet, colliders: &ColliderSet) -> Stamp {
-        let collider = roster.colliders.newest().and_then(|handle| {
-            let at = colliders.get(handle)?;
-            Some((handle, std::ptr::from_ref(at).addr()))
-        });
-        let body = roster.bodies.newest().and_then(|handle| {
-            let at = bodies.get(handle)?;
-            Some((handle, std::ptr::from_ref(at).addr()))
-        });
-        Stamp { collider, body }
+        let collider = |handle: Option<ColliderHandle>| {
+            handle.and_then(|h| Some((h, std::ptr::from_ref(colliders.get(h)?).addr())))
+        };
+        let body = |handle: Option<RigidBodyHandle>| {
+            handle.and_then(|h| Some((h, std::ptr::from_ref(bodies.get(h)?).addr())))
+        };
+        let (c, b) = (&roster.colliders, &roster.bodies);
+        Stamp {
+            colliders: [collider(c.oldest()), collider(c.newest())],
+            bodies: [body(b.oldest()), body(b.newest())],
+        }
     }
 
-    /// Whether the stamped objects are where they were: in the same world.
+    /// Whether the world is the one stamped: the stamped objects still in
+    /// it are where they were, and one is (or nothing was watched).
     fn holds(self, bodies: &RigidBodySet, colliders: &ColliderSet) -> bool {
-        let collider_holds = self.collider.is_none_or(|(handle, at)| {
-            colliders.get(handle).map(|c| std::ptr::from_ref(c).addr()) == Some(at)
-        });
-        let body_holds = self.body.is_none_or(|(handle, at)| {
-            bodies.get(handle).map(|b| std::ptr::from_ref(b).addr()) == Some(at)
-        });
-        collider_holds && body_holds
+        let colliders = self
+            .colliders
+            .into_iter()
+            .flatten()
+            .map(|(h, at)| colliders.get(h).map(|c| std::ptr::from_ref(c).addr() == at));
+        let bodies = self
+            .bodies
+            .into_iter()
+            .flatten()
+            .map(|(h, at)| bodies.get(h).map(|b| std::ptr::from_ref(b).addr() == at));
+        let (mut stamped, mut present) = (false, false);
+        for found in colliders.chain(bodies) {
+            stamped = true;
+            match found {
+                Some(false) => return false,
+                Some(true) => present = true,
+                None => {}
+            }
+        }
+        present || !stamped
     }
 }
 
@@ -165,12 +186,18 @@ impl<H: Handle, K> Watched<H, K> {
         }
     }
 
+    /// The oldest watched object.
+    fn oldest(&self) -> Option<H> {
+        self.list.iter().find_map(Self::known)
+    }
+
     /// The newest watched object.
     fn newest(&self) -> Option<H> {
-        self.list.iter().rev().find_map(|(handle, entry)| match entry {
-            Entry::Known(_) => Some(*handle),
-            _ => None,
-        })
+        self.list.iter().rev().find_map(Self::known)
+    }
+
+    fn known((handle, entry): &(H, Entry<K>)) -> Option<H> {
+        matches!(entry, Entry::Known(_)).then_some(*handle)
     }
 
     /// The watched handles, in the order they were first watched.
@@ -366,8 +393,9 @@ impl Roster {
         self.colliders.let_go(collider);
     }
 
-    /// A step of the hooks' own ended: until the next look, Rapier's change
-    /// flags say what the project changed (see `look`).
+    /// A step of the hooks' own ended, which brackets Rapier's: until the
+    /// next look, Rapier's change flags say what the project changed (see
+    /// `look`).
     pub(crate) fn stepped(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet) {
         self.stamp = Some(Stamp::of(self, bodies, colliders));
     }
@@ -410,10 +438,10 @@ impl Roster {
         let mut look = Look::default();
         // Rapier flags every object the project changes through its sets
         // (`get_mut`, `insert`, `set_parent`, a removal's parent body, a
-        // body's type) and clears the flags as its step ends: an unflagged
-        // object the look asks nothing of is as the last look left it, so
-        // it costs a read of its flag (`docs/architecture.md`, "Rapier's
-        // change flags").
+        // body's type) and clears the flags in its step: after a step of
+        // the hooks' own, an unflagged object the look asks nothing of is as
+        // the last look left it, so it costs a read of its flag
+        // (`docs/architecture.md`, "Rapier's change flags").
         let stamp = self.stamp.take();
         self.looks_since_full += 1;
         let flags = !all

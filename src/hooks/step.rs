@@ -173,6 +173,12 @@ impl RuleHooks {
         };
         self.finish_step(narrow_phase, bodies, colliders, Some(joints), quiet);
         self.boundary.own_step = true;
+        // Nothing came between `prepare` and Rapier's step, which cleared
+        // the change flags; Rapier's soft bodies change colliders without
+        // them (`docs/architecture.md`, "Rapier's change flags").
+        if !self.soft.seen(bodies) {
+            self.planned.roster.stepped(bodies, colliders);
+        }
         self.record_step(WorldRef::new(narrow_phase, bodies, colliders).with_joints(impulse_joints, multibody_joints));
     }
 

@@ -38,13 +38,7 @@ impl RuleHooks {
         }
         self.soft.forget_pieces();
         self.boundary.followed = false;
-        let soft = self.soft.seen(bodies);
-        if !soft {
-            // Rapier's soft bodies change colliders without its change
-            // flags (`docs/architecture.md`, "Rapier's change flags").
-            self.planned.roster.stepped(bodies, colliders);
-        }
-        if !self.boundary.followed_at_prepare && soft {
+        if !self.boundary.followed_at_prepare && self.soft.seen(bodies) {
             missing(
                 "follow_soft_bodies",
                 "before prepare, in a world with soft bodies (a `NoResponse` of a soft body is \

@@ -49,18 +49,20 @@ struct KnownBody {
 pub(crate) struct Roster {
     colliders: Watched<ColliderHandle, Known>,
     bodies: Watched<RigidBodyHandle, KnownBody>,
-    /// Where the newest watched objects were when the hooks' last step
-    /// ended; `None` until a step ends, and after each look.
+    /// Where the oldest and newest watched objects were when the hooks'
+    /// last step of their own ended; `None` until one ends, and after each
+    /// look.
     stamp: Option<Stamp>,
     /// Looks since the last that read every watched object.
     looks_since_full: u32,
 }
 
 /// Every how many looks the watched objects are all read, whatever their
-/// change flags say: what a project does behind the flags' back (a world
-/// put in place without `world_replaced` where the old one was, a step
-/// without the hooks) is read within this many steps
-/// (`docs/architecture.md`, "Rapier's change flags").
+/// change flags say: what a project does behind the flags' back (collision
+/// detection between the hooks' steps, a step without the hooks no witness
+/// saw, a world put in place without `world_replaced` where the old one
+/// was) is read within this many steps (`docs/architecture.md`, "Rapier's
+/// change flags").
 const FULL_LOOK_EVERY: u32 = 32;
 
 /// The collider count of a body not yet looked at, which no body has: the
@@ -507,8 +509,9 @@ impl Roster {
                 return false;
             };
             if flags && !known.marked && !collider.has_modified_flag() {
-                // Its body is as it was, or retyped: the body's flag, read
-                // by the loop above for a watched one.
+                // Its body may have changed type, which flags the body
+                // alone: read from the body's record (the loop above kept
+                // it) or, for a body not watched, from Rapier.
                 let is_dynamic = match known.body.and_then(|b| watched_bodies.get(b)) {
                     Some(known_body) => known_body.dynamic,
                     None => dynamic_body(bodies, known.body),

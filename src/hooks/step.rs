@@ -138,6 +138,10 @@ impl RuleHooks {
         if idle {
             self.count_idle_step();
         } else {
+            if self.witness_overridden(narrow_phase) {
+                // Said in `freeze_manifolds`; the look reads everything now.
+                self.planned.roster.read_all_next();
+            }
             self.prepare_with_graph(bodies, colliders, narrow_phase);
             self.freeze_manifolds(narrow_phase);
             self.wake_edited(islands, bodies);

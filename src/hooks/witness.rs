@@ -22,6 +22,9 @@ impl RuleHooks {
     /// hooks"). The witnesses stay for
     /// [`check_witness_after`](Self::check_witness_after).
     pub(super) fn check_witness(&mut self, narrow_phase: &NarrowPhase) {
+        if !self.witness_overridden(narrow_phase) {
+            return;
+        }
         if let Some(key) = self.boundary.one_way_witness
             && one_way_overridden(narrow_phase, key)
         {
@@ -39,6 +42,21 @@ impl RuleHooks {
                  and every rule the hook decides was dropped for that step"
             ));
         }
+    }
+
+    /// Whether a witness of the last step shows another answer in Rapier's
+    /// graph: Rapier stepped without the hooks since. Before their own
+    /// step's `prepare`, so that its look reads what that step's clearing
+    /// of Rapier's change flags hid (`docs/architecture.md`, "Rapier's
+    /// change flags"); [`check_witness`](Self::check_witness) says so.
+    pub(super) fn witness_overridden(&self, narrow_phase: &NarrowPhase) -> bool {
+        self.boundary
+            .one_way_witness
+            .is_some_and(|key| one_way_overridden(narrow_phase, key))
+            || self
+                .boundary
+                .witness
+                .is_some_and(|w| witness_overridden(narrow_phase, w.key, w.answered_as))
     }
 
     /// After a step in which Rapier asked the hook nothing: whether that

@@ -642,3 +642,43 @@ fn a_change_a_step_without_the_hooks_hid_is_read_all_the_same() {
         );
     }
 }
+
+/// A `world.step()` the witness sees makes the same step's look read every
+/// object the rules reach: the change the project made before it is read at
+/// once, not a step later (`docs/architecture.md`, "Rapier's change
+/// flags"). A ghost held inside the floor, hooked for a `NoContacts` with
+/// it, keeps the witness every step.
+#[test]
+fn a_change_before_a_step_the_witness_saw_is_read_at_once() {
+    let mut world = PhysicsWorld::new();
+    let floor = world.insert_body(RigidBodyBuilder::fixed());
+    world.insert_collider(cuboid(10.0, 0.5, 10.0), Some(floor));
+    let ghost = world.insert_body(RigidBodyBuilder::dynamic().gravity_scale(0.0));
+    // Layers of its own: the planner hooks it rather than give it a bit.
+    let layers = InteractionGroups::new(Group::GROUP_3, Group::ALL, InteractionTestMode::And);
+    let shape = world.insert_collider(cuboid(0.5, 0.5, 0.5).collision_groups(layers), Some(ghost));
+    let mut hooks = RuleHooks::default();
+    hooks.rules_mut().set_specific(ghost, floor, CollisionRule::NoContacts);
+    for _ in 0..5 {
+        hooks.step(&mut world);
+    }
+    assert!(hooks.stats().hooked_colliders > 0, "the ghost is hooked: {:?}", hooks.stats());
+    // The project's own change: other solver groups for the ghost.
+    let solver = InteractionGroups::new(Group::GROUP_4, Group::ALL, InteractionTestMode::And);
+    world.colliders[shape].set_solver_groups(solver);
+    world.step();
+    if cfg!(debug_assertions) {
+        let message = panic_message(|| {
+            hooks.step(&mut world);
+        })
+        .expect("a debug build stops at the step without the hooks");
+        assert!(message.contains("never `world.step()`"), "the witness says it: {message}");
+        return;
+    }
+    hooks.step(&mut world);
+    let stats = hooks.stats();
+    assert!(
+        stats.stepped_without_hooks && stats.planned_colliders > 0,
+        "the step without the hooks seen and the change read at once: {stats:?}"
+    );
+}

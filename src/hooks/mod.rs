@@ -322,10 +322,14 @@ impl Planned {
     /// How many of `handles` are watched and carry a hook flag the crate
     /// gave them (each once in `handles`), as `hooked` counts them.
     fn hooked_among(&self, handles: impl Iterator<Item = ColliderHandle>) -> usize {
+        self.carrying_hook(handles.filter(|&c| self.roster.watches(c)))
+    }
+
+    /// How many of `handles` carry a hook flag the crate gave them, watched
+    /// or not (the colliders a look just let go of).
+    fn carrying_hook(&self, handles: impl Iterator<Item = ColliderHandle>) -> usize {
         let modifies = self.counted_modifies;
-        handles
-            .filter(|&c| self.roster.watches(c) && self.carries_hook(c, modifies))
-            .count()
+        handles.filter(|&c| self.carries_hook(c, modifies)).count()
     }
 }
 

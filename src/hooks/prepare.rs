@@ -271,9 +271,8 @@ impl RuleHooks {
         // The colliders that went leave the hooked count (see
         // `count_hooked`): the look no longer watches them, their plans and
         // writes are still here.
-        let modifies = self.planned.counted_modifies;
         let left = look.removed_colliders.iter().map(|&(c, _)| c).chain(look.released.iter().copied());
-        let left_hooked = left.filter(|&c| self.planned.carries_hook(c, modifies)).count();
+        let left_hooked = self.planned.carrying_hook(left);
         self.planned.hooked = self.planned.hooked.saturating_sub(left_hooked);
         let ended = self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
         changed.nodes.extend(ended);

@@ -138,12 +138,17 @@ impl RuleHooks {
         if idle {
             self.count_idle_step();
         } else {
-            if self.witness_overridden(narrow_phase) {
-                // Said in `freeze_manifolds`; the look reads everything now.
+            // `freeze_manifolds`' witness check, made before the look so
+            // that the look reads everything after a step without the hooks.
+            let unhooked = self.witness_overridden(narrow_phase);
+            if unhooked {
                 self.planned.roster.read_all_next();
             }
             self.prepare_with_graph(bodies, colliders, narrow_phase);
-            self.freeze_manifolds(narrow_phase);
+            if unhooked {
+                self.check_witness(narrow_phase);
+            }
+            self.settle_manifolds(narrow_phase);
             self.wake_edited(islands, bodies);
         }
         let resting = islands.num_active_bodies() == 0;
@@ -217,6 +222,11 @@ impl RuleHooks {
     /// [`prepare`](Self::prepare) when stepping a bare pipeline.
     pub fn freeze_manifolds(&mut self, narrow_phase: &NarrowPhase) {
         self.check_witness(narrow_phase);
+        self.settle_manifolds(narrow_phase);
+    }
+
+    /// [`freeze_manifolds`](Self::freeze_manifolds) but the witness check.
+    fn settle_manifolds(&mut self, narrow_phase: &NarrowPhase) {
         self.boundary.owe_freeze = false;
         if !std::mem::take(&mut self.boundary.unsettled) {
             return;

@@ -22,9 +22,6 @@ impl RuleHooks {
     /// hooks"). The witnesses stay for
     /// [`check_witness_after`](Self::check_witness_after).
     pub(super) fn check_witness(&mut self, narrow_phase: &NarrowPhase) {
-        if !self.witness_overridden(narrow_phase) {
-            return;
-        }
         if let Some(key) = self.boundary.one_way_witness
             && one_way_overridden(narrow_phase, key)
         {
@@ -45,10 +42,11 @@ impl RuleHooks {
     }
 
     /// Whether a witness of the last step shows another answer in Rapier's
-    /// graph: Rapier stepped without the hooks since. Before their own
-    /// step's `prepare`, so that its look reads what that step's clearing
-    /// of Rapier's change flags hid (`docs/architecture.md`, "Rapier's
-    /// change flags"); [`check_witness`](Self::check_witness) says so.
+    /// graph: Rapier stepped without the hooks since. Asked before their
+    /// own step's `prepare`, so that its look reads what that step's
+    /// clearing of Rapier's change flags hid (`docs/architecture.md`,
+    /// "Rapier's change flags"); [`check_witness`](Self::check_witness)
+    /// then says which.
     pub(super) fn witness_overridden(&self, narrow_phase: &NarrowPhase) -> bool {
         self.boundary
             .one_way_witness

@@ -20,6 +20,10 @@ use super::super::world::{Mark, Settings};
 struct Known {
     body: Option<RigidBodyHandle>,
     dynamic: bool,
+    /// Its body was watched when it was last read: until the body's record
+    /// leaves the roster or changes type (which the look that sees it
+    /// lists), the record says what `dynamic` compares with.
+    on_watched_body: bool,
     /// What it shows since the crate last gave it its plan (what the crate
     /// wrote, or the project's own settings where the crate adds nothing):
     /// the look compares, to notice the project's changes.
@@ -350,6 +354,7 @@ impl Roster {
         let known = Known {
             body,
             dynamic: dynamic_body(bodies, body),
+            on_watched_body: body.is_some_and(|b| self.bodies.get(b).is_some()),
             wrote: None,
             // What it carries when first watched (a loaded world's mark, a
             // cut piece's copy of its source's) until the crate writes it.
@@ -461,6 +466,11 @@ impl Roster {
             }
         }
         let watched_colliders = &self.colliders;
+        // Bodies whose records changed type or were let go in this look: a
+        // collider on one compares its type afresh. A removed body is not
+        // listed: Rapier removes its colliders, or detaches them, which
+        // flags them.
+        let mut unsettled = Vec::new();
         self.bodies.retain(|handle, was| {
             // Gone from Rapier, or an older generation a newer body took the
             // slot of, or never in the world: removed.
@@ -478,6 +488,7 @@ impl Roster {
             if was.dynamic != body.is_dynamic() {
                 was.dynamic = body.is_dynamic();
                 look.changed.push(Node::Body(handle));
+                unsettled.push(handle.raw_parts());
             }
             if was.colliders != body.colliders().len() {
                 was.colliders = body.colliders().len();
@@ -487,7 +498,11 @@ impl Roster {
                     }
                 }
             }
-            !(std::mem::take(&mut was.marked) || ask_all) || keep(Node::Body(handle))
+            let kept = !(std::mem::take(&mut was.marked) || ask_all) || keep(Node::Body(handle));
+            if !kept {
+                unsettled.push(handle.raw_parts());
+            }
+            kept
         });
         for i in 0..look.added.len() {
             let collider = look.added[i];
@@ -496,8 +511,15 @@ impl Roster {
 
         // Bodies that lost a watched collider: a collider may have come in
         // its place, leaving the count as it was.
+        unsettled.sort_unstable();
         let mut recheck = Vec::new();
         let watched_bodies = &self.bodies;
+        // A watched body's type was read by the body loop above: its record
+        // answers without a second visit to Rapier's body.
+        let is_dynamic = |body: Option<RigidBodyHandle>| match body.and_then(|b| watched_bodies.get(b)) {
+            Some(known_body) => known_body.dynamic,
+            None => dynamic_body(bodies, body),
+        };
         self.colliders.retain(|handle, mut known| {
             // Gone from Rapier, or an older generation a newer collider took
             // the slot of (see `watch_collider`), or never in the world.
@@ -510,15 +532,23 @@ impl Roster {
             };
             if flags && !known.marked && !collider.has_modified_flag() {
                 // Its body may have changed type, which flags the body
-                // alone: read from the body's record (the loop above kept
-                // it) or, for a body not watched, from Rapier.
-                let is_dynamic = match known.body.and_then(|b| watched_bodies.get(b)) {
-                    Some(known_body) => known_body.dynamic,
-                    None => dynamic_body(bodies, known.body),
+                // alone. A body watched since the collider was last read,
+                // and not listed by this look, kept its type: nothing is
+                // looked up (a look of a stream or of a volley of shots
+                // walks hundreds of these). Else the body's record (the loop
+                // above kept it) or, for a body not watched, Rapier says.
+                let settled = match known.body {
+                    None => true,
+                    Some(b) => known.on_watched_body && unsettled.binary_search(&b.raw_parts()).is_err(),
                 };
-                if is_dynamic == known.dynamic {
+                if !settled {
+                    let record = known.body.and_then(|b| watched_bodies.get(b));
+                    known.on_watched_body = record.is_some();
+                }
+                if settled || is_dynamic(known.body) == known.dynamic {
                     debug_assert!(
                         known.body == collider.parent()
+                            && is_dynamic(known.body) == known.dynamic
                             && known.wrote.is_none_or(|wrote| Settings::of(collider) == wrote)
                             && Mark::on(collider) == known.crate_mark,
                         "{UNFLAGGED}"
@@ -542,12 +572,8 @@ impl Roster {
                 }
             }
             let body = collider.parent();
-            // A watched body's type was read by the body loop above: its
-            // record answers without a second visit to Rapier's body.
-            let is_dynamic = match body.and_then(|b| watched_bodies.get(b)) {
-                Some(known_body) => known_body.dynamic,
-                None => dynamic_body(bodies, body),
-            };
+            let is_dynamic = is_dynamic(body);
+            known.on_watched_body = body.is_some_and(|b| watched_bodies.get(b).is_some());
             if known.body != body {
                 recheck.extend(known.body);
                 look.changed.push(Node::Collider(handle));
@@ -619,6 +645,40 @@ mod tests {
         *watched.get_mut(handle(3, 0)).unwrap() = 31;
         assert_eq!(watched.handles().collect::<Vec<_>>(), vec![handle(3, 0)]);
         assert_eq!(walk(&mut watched, &[]), vec![(3, Some(31))]);
+    }
+
+    /// A collider on a body the roster let go reads the body's type from
+    /// Rapier: a retype flags the body alone, which the look no longer
+    /// walks, and the collider's own flag is clear.
+    #[test]
+    fn a_collider_follows_the_type_of_a_body_let_go() {
+        let mut world = PhysicsWorld::new();
+        let body = world.insert_body(RigidBodyBuilder::dynamic());
+        let collider = world.insert_collider(ColliderBuilder::ball(0.5), Some(body));
+        let mut roster = Roster::default();
+        roster.watch_body(&world.bodies, body);
+        roster.watch_collider(&world.bodies, &world.colliders, collider);
+        // A look (keeping the body or not), then a step of Rapier's, which
+        // clears the flags, as the hooks' own step does.
+        let look = |roster: &mut Roster, world: &mut PhysicsWorld, keep_body: bool| {
+            let look = roster.look(&world.bodies, &world.colliders, false, false, |node| {
+                keep_body || node != Node::Body(body)
+            });
+            world.step();
+            roster.stepped(&world.bodies, &world.colliders);
+            look
+        };
+        look(&mut roster, &mut world, true);
+        roster.mark(Node::Body(body));
+        look(&mut roster, &mut world, false);
+        assert_eq!(
+            (roster.body_count(), roster.collider_count()),
+            (0, 1),
+            "the body let go, its collider still watched"
+        );
+        world.bodies[body].set_body_type(RigidBodyType::Fixed, true);
+        let seen = look(&mut roster, &mut world, false);
+        assert_eq!(seen.changed, vec![Node::Body(body)], "the retype is seen through the collider");
     }
 
     #[test]

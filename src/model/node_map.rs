@@ -19,7 +19,6 @@ pub(crate) struct NodeMap<V> {
     colliders: HandleMap<ColliderHandle, V>,
     bodies: HandleMap<RigidBodyHandle, V>,
     others: HashMap<Node, V>,
-    len: usize,
 }
 
 impl<V> Default for NodeMap<V> {
@@ -28,7 +27,6 @@ impl<V> Default for NodeMap<V> {
             colliders: HandleMap::default(),
             bodies: HandleMap::default(),
             others: HashMap::new(),
-            len: 0,
         }
     }
 }
@@ -40,11 +38,6 @@ enum Place {
 }
 
 impl<V> NodeMap<V> {
-    #[inline]
-    pub(crate) fn is_empty(&self) -> bool {
-        self.len == 0
-    }
-
     /// Where `node`'s value is, or would be put.
     #[inline]
     fn place(&self, node: Node) -> Place {
@@ -87,22 +80,17 @@ impl<V> NodeMap<V> {
 
     /// `node`'s value, made by `make` if it has none.
     pub(crate) fn get_or_insert_with(&mut self, node: Node, make: impl FnOnce() -> V) -> &mut V {
-        let (value, inserted) = match self.place(node) {
+        match self.place(node) {
             Place::Slot => match node {
-                Node::Collider(c) => self.colliders.get_or_insert_with(c, make),
-                Node::Body(b) => self.bodies.get_or_insert_with(b, make),
+                Node::Collider(c) => self.colliders.get_or_insert_with(c, make).0,
+                Node::Body(b) => self.bodies.get_or_insert_with(b, make).0,
             },
-            Place::Other => {
-                let inserted = !self.others.contains_key(&node);
-                (self.others.entry(node).or_insert_with(make), inserted)
-            }
-        };
-        self.len += usize::from(inserted);
-        value
+            Place::Other => self.others.entry(node).or_insert_with(make),
+        }
     }
 
     pub(crate) fn remove(&mut self, node: Node) -> Option<V> {
-        let removed = match self.place(node) {
+        match self.place(node) {
             Place::Slot => {
                 let removed = match node {
                     Node::Collider(c) => self.colliders.remove(c),
@@ -114,9 +102,7 @@ impl<V> NodeMap<V> {
                 removed
             }
             Place::Other => self.others.remove(&node),
-        };
-        self.len -= usize::from(removed.is_some());
-        removed
+        }
     }
 
     /// Moves the value of another generation of a freed slot into it, so
@@ -170,7 +156,7 @@ mod tests {
         assert_eq!(map.remove(old), Some(7));
         assert_eq!((map.get(old), map.get(new), map.values().count()), (None, Some(&9), 1));
         assert_eq!(map.remove(new), Some(9));
-        assert!(map.is_empty());
+        assert_eq!(map.values().count(), 0);
         // The slot is free again for either generation.
         *map.or_default(old) = 1;
         assert_eq!((map.get(old), map.get(new)), (Some(&1), None));
@@ -218,7 +204,6 @@ mod tests {
                     }
                 }
                 assert_eq!(map.get(node), reference.get(&node), "{node:?} after step {step}");
-                assert_eq!(map.is_empty(), reference.is_empty());
                 let mut values: Vec<u32> = map.values().copied().collect();
                 let mut expected: Vec<u32> = reference.values().copied().collect();
                 values.sort_unstable();

@@ -218,14 +218,16 @@ impl Decisions {
         ended: impl Fn((Node, Node)) -> bool,
         reached: impl Fn(Node) -> bool,
     ) -> SmallVec<[Node; 4]> {
-        // A world without entries (a streamed level of groups) asks this of
-        // every node it removes.
-        if self.listed.is_empty() {
+        // Asked of every node an edit touches or a removal takes, most of
+        // which no entry names (a streamed level's tiles): those cost one
+        // look-up, not a collection of nothing (`docs/performance.md`,
+        // "Run 49").
+        let Some(listed) = self.listed.get(node) else {
             return SmallVec::new();
-        }
+        };
         // A removed ball ends the one entry about its turret: a handful,
         // kept off the heap.
-        let mut gone: SmallVec<[(Node, Node); 4]> = self.listed(node).filter(|&e| ended(e)).collect();
+        let mut gone: SmallVec<[(Node, Node); 4]> = listed.iter().filter(|&e| ended(e)).collect();
         if gone.is_empty() {
             return SmallVec::new();
         }

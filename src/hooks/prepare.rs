@@ -549,6 +549,10 @@ impl RuleHooks {
         removed_bodies: &[RigidBodyHandle],
     ) -> Vec<Node> {
         let mut gone: Vec<Node> = Vec::new();
+        // The bodies of removed colliders that went with them, and the
+        // watched bodies removed: a watched body is often both, and is
+        // forgotten once.
+        let mut gone_bodies: Vec<RigidBodyHandle> = removed_bodies.to_vec();
         for &(handle, body) in removed {
             if self.pairs.remove_collider(handle).0 {
                 // The pinned pair's other side was hooked for it.
@@ -561,12 +565,12 @@ impl RuleHooks {
             self.keep_written(handle, None);
             gone.push(Node::Collider(handle));
             // A body that keeps other colliders is in the look's `left`.
-            if let Some(body) = body.filter(|&b| !bodies.contains(b)) {
-                self.decide.rules.remove_node(body);
-                gone.push(Node::Body(body));
-            }
+            gone_bodies.extend(body.filter(|&b| !bodies.contains(b)));
         }
-        for &body in removed_bodies {
+        // In the node order, as the rule set's log is read.
+        gone_bodies.sort_unstable_by_key(|&b| Node::Body(b));
+        gone_bodies.dedup();
+        for body in gone_bodies {
             self.decide.rules.remove_node(body);
             gone.push(Node::Body(body));
         }

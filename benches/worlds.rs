@@ -39,7 +39,9 @@
 //! per step) when the `rate` variants run.
 //!
 //! `cargo bench --bench worlds` (criterion, then the paired ratios);
-//! `WORLDS_PAIRED_ONLY=1` skips criterion.
+//! `WORLDS_PAIRED_ONLY=1` skips criterion. `WORLDS_VARIANTS=level,churn/stream`
+//! runs the scenes whose names start so, `WORLDS_VARIANTS==churn/stream` the
+//! one scene of that name.
 
 use rapier_collision_rules::dim3 as rules;
 use rapier3d as rapier;
@@ -848,8 +850,14 @@ fn variants() -> Vec<(String, usize, Maker)> {
 }
 
 fn selected(name: &str) -> bool {
-    // WORLDS_VARIANTS=level,floor limits the runs to those scenes.
-    std::env::var("WORLDS_VARIANTS").map_or(true, |v| v.split(',').any(|x| name.starts_with(x)))
+    // WORLDS_VARIANTS=level,floor limits the runs to the scenes whose names
+    // start so; `=churn/stream` to the scene of that name alone.
+    std::env::var("WORLDS_VARIANTS").map_or(true, |v| {
+        v.split(',').any(|x| match x.strip_prefix('=') {
+            Some(exact) => name == exact,
+            None => name.starts_with(x),
+        })
+    })
 }
 
 fn worlds(c: &mut Criterion) {

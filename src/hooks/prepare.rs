@@ -567,8 +567,8 @@ impl RuleHooks {
             // A body that keeps other colliders is in the look's `left`.
             gone_bodies.extend(body.filter(|&b| !bodies.contains(b)));
         }
-        // In the node order, as the rule set's log is read.
-        gone_bodies.sort_unstable_by_key(|&b| Node::Body(b));
+        // In the handles' order: a pair of numbers sorts cheaper than a node.
+        gone_bodies.sort_unstable_by_key(|b| b.into_raw_parts());
         gone_bodies.dedup();
         for body in gone_bodies {
             self.decide.rules.remove_node(body);

@@ -41,7 +41,8 @@
 //! `cargo bench --bench worlds` (criterion, then the paired ratios);
 //! `WORLDS_PAIRED_ONLY=1` skips criterion. `WORLDS_VARIANTS=level,churn/stream`
 //! runs the scenes whose names start so, `WORLDS_VARIANTS==churn/stream` the
-//! one scene of that name.
+//! one scene of that name. `WORLDS_PAIRS=50` makes each paired run exactly
+//! 50 step pairs (for profiles that compare two builds).
 
 use rapier_collision_rules::dim3 as rules;
 use rapier3d as rapier;
@@ -760,12 +761,20 @@ trait PairedRuns {
 impl PairedRuns for Twins {
     /// Five paired runs: each the ratio of the rules world's time to the
     /// plain one's over step pairs timed back to back, and the extra time
-    /// per step. Each run lasts at least 0.3 s and 50 pairs.
+    /// per step. Each run lasts at least 0.3 s and 50 pairs; with
+    /// `WORLDS_PAIRS=n`, exactly `n` pairs, so that a profile of two builds
+    /// counts the same steps (a run of time varies with the machine).
     fn paired(&mut self) -> Paired {
+        let exact: Option<u32> = std::env::var("WORLDS_PAIRS")
+            .ok()
+            .and_then(|n| n.parse().ok());
         let mut runs = Vec::new();
         for _ in 0..5 {
             let (mut plain, mut rules, mut pairs) = (Duration::ZERO, Duration::ZERO, 0u32);
-            while pairs < 50 || plain + rules < Duration::from_millis(300) {
+            while match exact {
+                Some(n) => pairs < n,
+                None => pairs < 50 || plain + rules < Duration::from_millis(300),
+            } {
                 let pair = self.time_pair(pairs % 2 == 1);
                 plain += pair.plain;
                 rules += pair.rules;

@@ -509,9 +509,9 @@ impl Roster {
             self.watch_collider(bodies, colliders, collider);
         }
 
+        unsettled.sort_unstable();
         // Bodies that lost a watched collider: a collider may have come in
         // its place, leaving the count as it was.
-        unsettled.sort_unstable();
         let mut recheck = Vec::new();
         let watched_bodies = &self.bodies;
         // A watched body's type was read by the body loop above: its record

@@ -163,24 +163,17 @@ impl<H: Handle, V> HandleMap<H, V> {
         matches!(self.slots.get(index as usize), Some(Some((stored, _))) if *stored != generation)
     }
 
-    /// The value of `handle`, made by `make` if its slot is empty, and
-    /// whether it was made. The caller checks
-    /// [`holds_other`](Self::holds_other) first.
-    pub(crate) fn get_or_insert_with(
-        &mut self,
-        handle: H,
-        make: impl FnOnce() -> V,
-    ) -> (&mut V, bool) {
+    /// The value of `handle`, made by `make` if its slot is empty. The
+    /// caller checks [`holds_other`](Self::holds_other) first.
+    pub(crate) fn get_or_insert_with(&mut self, handle: H, make: impl FnOnce() -> V) -> &mut V {
         debug_assert!(!self.holds_other(handle), "a slot of another generation");
         let (index, generation) = handle.raw_parts();
         let index = index as usize;
         if index >= self.slots.len() {
             self.slots.resize_with(index + 1, || None);
         }
-        let slot = &mut self.slots[index];
-        let made = slot.is_none();
-        let (_, value) = slot.get_or_insert_with(|| (generation, make()));
-        (value, made)
+        let (_, value) = self.slots[index].get_or_insert_with(|| (generation, make()));
+        value
     }
 
     /// The handle of a newer generation than `handle` that the slot holds,

@@ -82,8 +82,8 @@ impl<V> NodeMap<V> {
     pub(crate) fn get_or_insert_with(&mut self, node: Node, make: impl FnOnce() -> V) -> &mut V {
         match self.place(node) {
             Place::Slot => match node {
-                Node::Collider(c) => self.colliders.get_or_insert_with(c, make).0,
-                Node::Body(b) => self.bodies.get_or_insert_with(b, make).0,
+                Node::Collider(c) => self.colliders.get_or_insert_with(c, make),
+                Node::Body(b) => self.bodies.get_or_insert_with(b, make),
             },
             Place::Other => self.others.entry(node).or_insert_with(make),
         }
@@ -112,7 +112,7 @@ impl<V> NodeMap<V> {
             return;
         };
         let value = self.others.remove(&node).expect("a key just found");
-        let _ = match node {
+        match node {
             Node::Collider(c) => self.colliders.get_or_insert_with(c, || value),
             Node::Body(b) => self.bodies.get_or_insert_with(b, || value),
         };

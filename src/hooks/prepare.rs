@@ -558,7 +558,6 @@ impl RuleHooks {
                 // The pinned pair's other side was hooked for it.
                 self.queued.replan.get_or_insert(PlanCause::PinnedPair);
             }
-            self.decide.rules.remove_node(handle);
             if self.planned.plan.forget(handle) {
                 self.queued.replan.get_or_insert(PlanCause::NewClass);
             }
@@ -570,10 +569,10 @@ impl RuleHooks {
         // In the handles' order: a pair of numbers sorts cheaper than a node.
         gone_bodies.sort_unstable_by_key(|b| b.into_raw_parts());
         gone_bodies.dedup();
-        for body in gone_bodies {
-            self.decide.rules.remove_node(body);
-            gone.push(Node::Body(body));
-        }
+        gone.extend(gone_bodies.into_iter().map(Node::Body));
+        // Together: whether each is dead to the rule set does not depend on
+        // the order Rapier removed them in.
+        self.decide.rules.remove_nodes(&gone);
         self.stats.removed_objects = removed.len() + removed_bodies.len();
         // A removed object's entries end, and what their decisions said of
         // the colliders on their other side.

@@ -1,6 +1,8 @@
 //! Forgetting removed objects (`docs/semantics.md`, "Handles of removed objects"): their rules,
 //! the entries about them and their parent links.
 
+use smallvec::SmallVec;
+
 use super::super::rapier::prelude::{ColliderSet, RigidBodyHandle, RigidBodySet};
 
 use super::super::{CollisionRuleSet, Node};
@@ -33,14 +35,27 @@ impl CollisionRuleSet {
     /// # Ok::<(), RuleError>(())
     /// ```
     pub fn remove_node(&mut self, node: impl Into<Node>) {
-        let node = node.into();
-        // Only a node the rules held is remembered as removed: whether an
-        // edit through a handle is refused must not depend on which
-        // objects the hooks happened to watch.
-        let held = self.holds_rules_about(node);
-        self.forget_node(node);
-        if held {
-            self.removed.bury(node);
+        self.remove_nodes(&[node.into()]);
+    }
+
+    /// Forgets nodes that left the world together (the objects Rapier
+    /// removed since the last step), as [`remove_node`](Self::remove_node)
+    /// does each. Only a node the rules held is remembered as removed:
+    /// whether an edit through a handle is refused must not depend on which
+    /// objects the hooks happened to watch. Whether each was held is read
+    /// before any is forgotten: forgetting one can leave another unnamed (a
+    /// collider's entry about the body removed with it, a parent link), and
+    /// the order of the removals must not decide which handles are dead.
+    pub(crate) fn remove_nodes(&mut self, nodes: &[Node]) {
+        // A step's removals: a few dozen, kept off the heap.
+        let held: SmallVec<[bool; 64]> = nodes.iter().map(|&node| self.holds_rules_about(node)).collect();
+        for &node in nodes {
+            self.forget_node(node);
+        }
+        for (&node, held) in nodes.iter().zip(held) {
+            if held {
+                self.removed.bury(node);
+            }
         }
     }
 
@@ -108,9 +123,7 @@ impl CollisionRuleSet {
             Node::Body(h) => (1, h.into_raw_parts()),
         });
         missing.dedup();
-        for &node in &missing {
-            self.remove_node(node);
-        }
+        self.remove_nodes(&missing);
         missing.len()
     }
 
@@ -119,7 +132,7 @@ impl CollisionRuleSet {
 #[cfg(test)]
 mod tests {
     use super::super::super::rapier::prelude::*;
-    use super::super::super::{CollisionRule, CollisionRuleSet, Node};
+    use super::super::super::{CollisionRule, CollisionRuleSet, Node, RuleError};
 
     /// The nodes the change log sends the hooks to, sorted.
     fn touched(rules: &mut CollisionRuleSet) -> Vec<Node> {
@@ -169,6 +182,43 @@ mod tests {
         assert_eq!(rules.specific(b, z), CollisionRule::NoPair);
         rules.remove_node(z);
         assert_eq!(touched(&mut rules), vec![Node::Body(b)], "b's record holds no entry now");
+    }
+
+    /// Objects removed together (a body and a collider whose entry names
+    /// it, a child and its parent) are each dead to the rule set, in
+    /// either order: forgetting one first used to leave the other unnamed,
+    /// and so not remembered as removed.
+    #[test]
+    fn nodes_removed_together_are_each_remembered_as_removed_in_any_order() {
+        let mut bodies = RigidBodySet::new();
+        let mut colliders = ColliderSet::new();
+        let (b1, b2, spare) = (
+            bodies.insert(RigidBodyBuilder::dynamic()),
+            bodies.insert(RigidBodyBuilder::dynamic()),
+            bodies.insert(RigidBodyBuilder::dynamic()),
+        );
+        let c2 = colliders.insert_with_parent(ColliderBuilder::ball(0.5), b2, &mut bodies);
+        let (child, parent) = (
+            bodies.insert(RigidBodyBuilder::dynamic()),
+            bodies.insert(RigidBodyBuilder::dynamic()),
+        );
+        for order in [
+            [Node::Collider(c2), Node::Body(b1), Node::Body(child), Node::Body(parent)],
+            [Node::Body(parent), Node::Body(child), Node::Body(b1), Node::Collider(c2)],
+        ] {
+            let mut rules = CollisionRuleSet::default();
+            rules.set_specific(c2, b1, CollisionRule::NoPair);
+            rules.set_parent(child, parent).expect("two live bodies");
+            rules.remove_nodes(&order);
+            for body in [b1, child, parent] {
+                assert_eq!(
+                    rules.set_parent(body, spare),
+                    Err(RuleError::Removed { node: body.into() }),
+                    "{body:?} is dead after removing {order:?}"
+                );
+            }
+            assert!(rules.is_removed(Node::Collider(c2)), "removing {order:?}");
+        }
     }
 
     /// Found by trying soft debris as a new user: a node whose one entry

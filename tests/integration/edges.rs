@@ -255,6 +255,46 @@ fn removed_objects_lend_no_rules_to_readers_that_take_the_world() {
     assert_eq!(why.rule, rules.resolve(bodies, colliders, calf, loose));
 }
 
+/// Objects Rapier removes in one step are each dead to the rule set,
+/// whatever the order of the removals: a body named only by the entry of a
+/// collider removed with it, and a child and its parent linked only to each
+/// other. Found by a review: the hooks forgot the collider first, which left
+/// the body unnamed, and so not remembered as removed.
+#[test]
+fn objects_removed_in_one_step_are_each_dead_in_any_order() {
+    use rapier_collision_rules::{Node, RuleError};
+    for first_named in [true, false] {
+        let mut world = PhysicsWorld::new();
+        let mut body = || world.insert_body(RigidBodyBuilder::dynamic());
+        let (named, owner, child, parent, spare) = (body(), body(), body(), body(), body());
+        let ball = world.insert_collider(ColliderBuilder::ball(0.2), Some(owner));
+        world.insert_collider(ColliderBuilder::ball(0.2), Some(named));
+        let mut hooks = RuleHooks::default();
+        let rules = hooks.rules_mut();
+        rules.set_specific(ball, named, NoPair);
+        rules.set_parent(child, parent).expect("a tree");
+        hooks.step(&mut world);
+        let order = if first_named {
+            [named, owner, parent, child]
+        } else {
+            [owner, named, child, parent]
+        };
+        for gone in order {
+            world.remove_body(gone);
+        }
+        hooks.step(&mut world);
+        for gone in [named, child, parent] {
+            assert_eq!(
+                hooks.rules_mut().set_parent(gone, spare),
+                Err(RuleError::Removed {
+                    node: Node::Body(gone)
+                }),
+                "{gone:?} after removing {order:?}"
+            );
+        }
+    }
+}
+
 /// Once the hooks forget an object Rapier removed, every editing verb
 /// treats its handle alike: the verbs that return a `Result` refuse it with
 /// `RuleError::Removed`, the others change nothing at all.

@@ -36,6 +36,14 @@ struct Known {
     marked: bool,
 }
 
+/// A collider's body as the look reads it: its type, and whether the
+/// roster watches it.
+#[derive(Clone, Copy, Debug)]
+struct BodyType {
+    dynamic: bool,
+    watched: bool,
+}
+
 /// What the hooks remember of a watched body.
 #[derive(Clone, Copy, Debug)]
 struct KnownBody {
@@ -516,9 +524,10 @@ impl Roster {
         let watched_bodies = &self.bodies;
         // A watched body's type was read by the body loop above: its record
         // answers without a second visit to Rapier's body.
-        let is_dynamic = |body: Option<RigidBodyHandle>| match body.and_then(|b| watched_bodies.get(b)) {
-            Some(known_body) => known_body.dynamic,
-            None => dynamic_body(bodies, body),
+        // With whether the body is watched (`Known::on_watched_body`).
+        let body_type = |body: Option<RigidBodyHandle>| match body.and_then(|b| watched_bodies.get(b)) {
+            Some(known_body) => BodyType { dynamic: known_body.dynamic, watched: true },
+            None => BodyType { dynamic: dynamic_body(bodies, body), watched: false },
         };
         self.colliders.retain(|handle, mut known| {
             // Gone from Rapier, or an older generation a newer collider took
@@ -541,14 +550,15 @@ impl Roster {
                     None => true,
                     Some(b) => known.on_watched_body && unsettled.binary_search(&b.raw_parts()).is_err(),
                 };
-                if !settled {
-                    let record = known.body.and_then(|b| watched_bodies.get(b));
-                    known.on_watched_body = record.is_some();
-                }
-                if settled || is_dynamic(known.body) == known.dynamic {
+                let kept_type = settled || {
+                    let now = body_type(known.body);
+                    known.on_watched_body = now.watched;
+                    now.dynamic == known.dynamic
+                };
+                if kept_type {
                     debug_assert!(
                         known.body == collider.parent()
-                            && is_dynamic(known.body) == known.dynamic
+                            && body_type(known.body).dynamic == known.dynamic
                             && known.wrote.is_none_or(|wrote| Settings::of(collider) == wrote)
                             && Mark::on(collider) == known.crate_mark,
                         "{UNFLAGGED}"
@@ -572,8 +582,11 @@ impl Roster {
                 }
             }
             let body = collider.parent();
-            let is_dynamic = is_dynamic(body);
-            known.on_watched_body = body.is_some_and(|b| watched_bodies.get(b).is_some());
+            let BodyType {
+                dynamic: is_dynamic,
+                watched,
+            } = body_type(body);
+            known.on_watched_body = watched;
             if known.body != body {
                 recheck.extend(known.body);
                 look.changed.push(Node::Collider(handle));

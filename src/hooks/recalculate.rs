@@ -35,18 +35,20 @@ impl RuleHooks {
         let mut refresh = Vec::new();
         // Everything, or the pairs of the colliders reached (through the
         // table's index: an edit costs its colliders' pairs).
-        let keys: Vec<PairKey> = if everything {
+        let mut keys: Vec<PairKey> = if everything {
             self.pairs.iter().map(|(key, _)| key).collect()
         } else {
-            let mut keys: Vec<PairKey> = affected
+            affected
                 .iter()
                 .chain(forced)
                 .flat_map(|&c| self.pairs.keys_of(c).iter().copied())
-                .collect();
-            keys.sort_unstable();
-            keys.dedup();
-            keys
+                .collect()
         };
+        // The table's order is its hasher's, seeded per process: the
+        // wake-ups and nudges below reach Rapier in the pair order instead,
+        // which the updates keep.
+        keys.sort_unstable();
+        keys.dedup();
         let mut updates = Vec::new();
         let mut unpinned = false;
         for key in keys {
@@ -60,9 +62,6 @@ impl RuleHooks {
             updates.push((key, self.calculate(bodies, colliders, a, b), force));
         }
         self.stats.pairs_recalculated = updates.len();
-        // The table's order is its hasher's, seeded per process: the
-        // wake-ups and nudges below reach Rapier in the pair order instead.
-        updates.sort_unstable_by_key(|&(key, _, _)| key);
         for (key, computed, force) in updates {
             let state = self
                 .pairs

@@ -257,8 +257,10 @@ pub(crate) fn seconds_come(left: f64, dt: Real) -> bool {
 pub(crate) const HALF_STEP_SLACK: f64 = 1e-3;
 
 /// Steps counted and the simulated time they took. `f64`: a day at 60 Hz
-/// sums without losing the half step a time rounds by.
-#[derive(Clone, Copy, Debug, Default)]
+/// sums without losing the half step a time rounds by. Saved as it is, so
+/// that a loaded set counts on from the same bits.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Clock {
     pub(crate) steps: u64,
     pub(crate) time: f64,

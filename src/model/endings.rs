@@ -36,6 +36,36 @@ struct End {
     came: bool,
 }
 
+/// An end as a save holds it (feature `serde`): as given, with the reading
+/// of the ends' clock then, and whether its count came. A save of what is
+/// left of a time would round it to a `Real`, and a time a few of its last
+/// bits short of a half step could then end a step apart from the set
+/// never saved (`docs/semantics.md`, "Saving and loading").
+#[cfg(feature = "serde")]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SavedEnd {
+    pub(crate) until: Until,
+    pub(crate) given: Clock,
+    pub(crate) came: bool,
+}
+
+#[cfg(feature = "serde")]
+impl SavedEnd {
+    /// What the constructors and the clock let through: a valid `until`
+    /// (see [`Until::is_valid`]), come if it counts to apart, given at a
+    /// reading of `clock` at or before `clock`'s own.
+    pub(crate) fn is_valid(&self, clock: Clock) -> bool {
+        // An end at apart comes when given.
+        let came_if_apart = self.came || !matches!(self.until.count, Count::Apart);
+        self.until.is_valid()
+            && came_if_apart
+            && self.given.steps <= clock.steps
+            && self.given.time.is_finite()
+            && self.given.time >= 0.0
+            && self.given.time <= clock.time
+    }
+}
+
 /// A place in a list of ends by when they come: the step (or the time's
 /// bits: a time is never negative, and the bits of non-negative floats
 /// order as the floats do), the end's id, and its entry.
@@ -77,6 +107,51 @@ impl Endings {
         self.ends
             .iter()
             .map(|(&key, end)| (key, end.until.left(self.clock.since(end.given), end.came)))
+    }
+
+    /// The clock the ends count by, as a save holds it.
+    #[cfg(feature = "serde")]
+    pub(crate) fn clock(&self) -> Clock {
+        self.clock
+    }
+
+    /// Every end as a save holds it, in the node order.
+    #[cfg(feature = "serde")]
+    pub(crate) fn saved(&self) -> impl Iterator<Item = ((Node, Node), SavedEnd)> + '_ {
+        self.ends.iter().map(|(&key, end)| {
+            let End { until, given, came, .. } = *end;
+            (key, SavedEnd { until, given, came })
+        })
+    }
+
+    /// The ends a save holds, counting on from `clock` (each checked by
+    /// [`SavedEnd::is_valid`]): every end comes at the step the set that
+    /// was saved would have counted it at.
+    #[cfg(feature = "serde")]
+    pub(crate) fn restored(clock: Clock, saved: impl IntoIterator<Item = ((Node, Node), SavedEnd)>) -> Endings {
+        let mut endings = Endings {
+            clock,
+            ..Endings::default()
+        };
+        for (key, SavedEnd { until, given, came }) in saved {
+            debug_assert!(SavedEnd { until, given, came }.is_valid(clock), "checked by the load");
+            endings.next_id += 1;
+            let end = End {
+                until,
+                given,
+                id: endings.next_id,
+                came,
+            };
+            if let Some(was) = endings.ends.insert(key, end)
+                && was.came
+            {
+                endings.came.remove(&key);
+            }
+            endings.list(key, end);
+        }
+        endings.kept = endings.ends.len();
+        endings.tidy_lists();
+        endings
     }
 
     /// Gives `key`'s entry `until`, counted from now, in place of any end

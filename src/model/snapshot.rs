@@ -8,6 +8,8 @@ use serde::{Deserialize, Serialize};
 
 use super::super::{CollisionGroup, CollisionRule, CollisionRuleSet, Node, OneWay, RuleError, Until};
 use super::decision::Decision;
+use super::ending::Clock;
+use super::endings::{Endings, SavedEnd};
 use super::written::Written;
 
 /// Why a saved rule set was refused: what no rule set of this crate holds,
@@ -43,15 +45,24 @@ pub enum LoadError {
         /// The body.
         child: RigidBodyHandle,
     },
-    /// The end of an entry with a negative or not-a-number margin or time:
-    /// `Until` refuses them when built.
-    #[error("saved end of the entry of {node:?} about {other:?} has a negative or NaN margin or time")]
+    /// The end of an entry with a negative or not-a-number margin or time
+    /// (`Until` refuses them when built), an end at apart that has not
+    /// come (it comes when given), or one given at a reading of the ends'
+    /// clock past the clock's own.
+    #[error(
+        "saved end of the entry of {node:?} about {other:?} has a negative or NaN margin or \
+         time, waits to count to apart, or was given after the saved clock"
+    )]
     BadEnd {
         /// The node holding the entry.
         node: Node,
         /// The node the entry is about.
         other: Node,
     },
+    /// The ends' clock has a negative or not-a-number time: no steps
+    /// count to it.
+    #[error("saved clock of the ends has a negative or NaN time")]
+    BadEndsClock,
     /// A one-way setting whose normal is not of length 1 or whose angle is
     /// not between 0 and pi: `OneWay` refuses them when built.
     #[error("saved one-way setting of {node:?} has a normal not of length 1 or an angle out of 0..=pi")]
@@ -84,6 +95,27 @@ pub enum LoadError {
         /// What is wrong with it.
         why: &'static str,
     },
+}
+
+/// The end of the entry of `node` about `other`.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SavedEnding {
+    node: Node,
+    other: Node,
+    /// As given.
+    until: Until,
+    /// The reading of the ends' clock when it was given.
+    given: Clock,
+    /// Its count came.
+    came: bool,
+}
+
+impl SavedEnding {
+    fn end(&self) -> SavedEnd {
+        let SavedEnding { until, given, came, .. } = *self;
+        SavedEnd { until, given, came }
+    }
 }
 
 /// One rule record and the nodes that share it.
@@ -133,10 +165,15 @@ pub struct SavedRuleSet {
     group_rules: Vec<(CollisionGroup, CollisionGroup, CollisionRule)>,
     records: Vec<SavedRecord>,
     parents: Vec<(RigidBodyHandle, RigidBodyHandle)>,
-    /// The ends of entries given one, with what is left of each (absent
-    /// from saves made before rules had ends).
+    /// The ends of entries given one, each as given with the reading of
+    /// the ends' clock then (absent from saves made before rules had ends).
     #[serde(default)]
-    endings: Vec<(Node, Node, Until)>,
+    endings: Vec<SavedEnding>,
+    /// The ends' clock: the steps and the simulated time counted since the
+    /// set was made, so that a loaded set counts every end on from the same
+    /// bits as the set never saved (absent as `endings`).
+    #[serde(default)]
+    ends_clock: Clock,
     /// What the hooks that held the set had written on each collider, and
     /// the project's own settings under it: hooks given the set with the
     /// world saved beside it tell the crate's writes from the project's
@@ -180,13 +217,19 @@ impl From<CollisionRuleSet> for SavedRuleSet {
         parents.sort_by_key(|(c, _)| c.into_raw_parts());
         // An end whose entry went with a removed object is not saved: the
         // count drops it when it comes, the save at once.
-        let mut endings: Vec<_> = rules
+        // In the node order, the endings' own.
+        let endings: Vec<_> = rules
             .endings
-            .iter()
+            .saved()
             .filter(|&(key, _)| rules.end_holds(key))
-            .map(|((n, o), u)| (n, o, u))
+            .map(|((node, other), SavedEnd { until, given, came })| SavedEnding {
+                node,
+                other,
+                until,
+                given,
+                came,
+            })
             .collect();
-        endings.sort_by_key(|&(n, o, _)| (n, o));
         let writes = rules.writes.iter().map(|(h, &w)| (h, w)).collect();
         let mut decisions: Vec<_> = rules.decisions.iter().map(|(&(n, o), &d)| (n, o, d)).collect();
         decisions.sort_by_key(|&(n, o, _)| (n, o));
@@ -197,6 +240,7 @@ impl From<CollisionRuleSet> for SavedRuleSet {
             records: records.into_iter().map(|(_, r)| r).collect(),
             parents,
             endings,
+            ends_clock: rules.endings.clock(),
             writes,
             decisions,
         }
@@ -240,7 +284,11 @@ impl SavedRuleSet {
                 }
             }
         }
-        if let Some(&(node, other, _)) = self.endings.iter().find(|(_, _, until)| !until.is_valid()) {
+        let clock = self.ends_clock;
+        if !(clock.time.is_finite() && clock.time >= 0.0) {
+            return Err(LoadError::BadEndsClock);
+        }
+        if let Some(&SavedEnding { node, other, .. }) = self.endings.iter().find(|e| !e.end().is_valid(clock)) {
             return Err(LoadError::BadEnd { node, other });
         }
         let mut children = hashbrown::HashSet::new();
@@ -344,12 +392,14 @@ impl TryFrom<SavedRuleSet> for CollisionRuleSet {
                 Err(e) => return Err(LoadError::ParentMap(e)),
             }
         }
-        for (node, other, until) in saved.endings {
-            // An end of an entry the save does not hold ends nothing.
-            if rules.end_holds((node, other)) {
-                rules.endings.insert((node, other), until);
-            }
-        }
+        // An end of an entry the save does not hold ends nothing.
+        let held: Vec<_> = saved
+            .endings
+            .into_iter()
+            .filter(|e| rules.end_holds((e.node, e.other)))
+            .map(|e| ((e.node, e.other), e.end()))
+            .collect();
+        rules.endings = Endings::restored(saved.ends_clock, held);
         for (collider, written) in saved.writes {
             rules.writes.insert_evicting(collider, written);
         }
@@ -358,5 +408,65 @@ impl TryFrom<SavedRuleSet> for CollisionRuleSet {
         // loaded`), it is another set (`model/identity.rs`): every pair and
         // plan is looked at again.
         Ok(rules)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::rapier::prelude::{Real, RigidBodyHandle};
+    use super::super::super::{CollisionRule, CollisionRuleSet, Until};
+
+    /// The step at which the end of an entry given for `seconds` comes, in a
+    /// set counted in steps of `dt` from seven steps before it was given:
+    /// never saved, or saved through serde and loaded before step
+    /// `save_at`.
+    fn step_it_comes(seconds: Real, dt: Real, save_at: Option<usize>) -> usize {
+        let (a, b) = (RigidBodyHandle::from_raw_parts(0, 0), RigidBodyHandle::from_raw_parts(1, 0));
+        let mut rules = CollisionRuleSet::default();
+        for _ in 0..7 {
+            rules.count_ends(dt);
+        }
+        let until = Until::seconds(seconds).even_if_overlapping();
+        rules.set_specific_until(a, b, CollisionRule::NoPair, until);
+        for step in 0..10_000 {
+            if Some(step) == save_at {
+                let saved = serde_json::to_string(&rules).expect("a rule set saves");
+                rules = serde_json::from_str(&saved).expect("a saved rule set loads");
+            }
+            if !rules.count_ends(dt).is_empty() {
+                return step;
+            }
+        }
+        panic!("Until::seconds({seconds}) never came in steps of {dt}");
+    }
+
+    /// Found by a sweep of a rollback trial: a save held what was left of a
+    /// time, rounded to a `Real`, and a time a few of its last bits from
+    /// where a step holds it or not (a half step, less the slack of
+    /// `HALF_STEP_SLACK`) ended a step apart from the set never saved at
+    /// some save points. A save now holds each end as given, with the
+    /// clock it counts by.
+    #[test]
+    fn an_end_saved_at_any_step_comes_at_the_step_of_the_set_never_saved() {
+        let mut checked = 0;
+        for dt in [1.0 / 60.0, 1.0 / 144.0] {
+            for n in 1..24u16 {
+                let edge = (f64::from(n) + 0.499) * f64::from(dt);
+                for bits in -12..=12 {
+                    let seconds = f32::from_bits((edge as f32).to_bits().wrapping_add_signed(bits));
+                    let never = step_it_comes(seconds, dt, None);
+                    for save_at in 0..=never + 1 {
+                        let saved = step_it_comes(seconds, dt, Some(save_at));
+                        assert_eq!(
+                            saved, never,
+                            "Until::seconds({seconds}) in steps of {dt}, saved before step {save_at}: \
+                             came at step {saved}, never saved at step {never}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked} save points");
     }
 }

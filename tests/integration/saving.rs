@@ -204,15 +204,50 @@ fn rules_with_an_end_are_saved_with_what_is_left_and_end_after_loading_as_they_w
     let mut damaged = old.clone();
     old.as_object_mut().expect("a map").remove("endings");
     let _: CollisionRuleSet = serde_json::from_value(old)?;
-    // A damaged end is refused, naming the entry.
-    damaged["endings"] = serde_json::json!([[{"Body": damaged["records"][0]["users"][0]["Body"]}, {"Body": damaged["records"][0]["users"][0]["Body"]}, {"count": "Apart", "margin": -1.0, "wait_apart": true}]]);
+    // A damaged end is refused, naming the entry: a negative margin, an end
+    // given after the saved clock, an end at apart not come; and a clock
+    // with a negative time.
+    let node = damaged["records"][0]["users"][0].clone();
+    let end = |until: serde_json::Value, given_steps: u64, came: bool| {
+        serde_json::json!([{
+            "node": node, "other": node, "until": until,
+            "given": {"steps": given_steps, "time": 0.0}, "came": came,
+        }])
+    };
+    let apart =
+        |margin: f64| serde_json::json!({"count": "Apart", "margin": margin, "wait_apart": true});
+    let clock = damaged["ends_clock"]["steps"]
+        .as_u64()
+        .expect("a count of steps");
+    for (endings, why) in [
+        (end(apart(-1.0), 0, true), "a negative margin"),
+        (end(apart(0.0), clock + 1, true), "given after the clock"),
+        (end(apart(0.0), 0, false), "an end at apart not come"),
+    ] {
+        let mut damaged = damaged.clone();
+        damaged["endings"] = endings;
+        let error = serde_json::from_value::<CollisionRuleSet>(damaged)
+            .err()
+            .map(|e| e.to_string());
+        assert!(
+            error
+                .as_deref()
+                .is_some_and(|e| e.contains("saved end of the entry")),
+            "{why}: {error:?}"
+        );
+    }
+    // The same end, undamaged, loads.
+    let mut sound = damaged.clone();
+    sound["endings"] = end(apart(0.0), clock, true);
+    let _: CollisionRuleSet = serde_json::from_value(sound)?;
+    damaged["ends_clock"]["time"] = serde_json::json!(-1.0);
     let error = serde_json::from_value::<CollisionRuleSet>(damaged)
         .err()
         .map(|e| e.to_string());
     assert!(
         error
             .as_deref()
-            .is_some_and(|e| e.contains("negative or NaN margin")),
+            .is_some_and(|e| e.contains("saved clock of the ends")),
         "{error:?}"
     );
     Ok(())

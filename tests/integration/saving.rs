@@ -201,7 +201,7 @@ fn rules_with_an_end_are_saved_with_what_is_left_and_end_after_loading_as_they_w
     );
     // A save made before ends existed has no `endings`: it loads with none.
     let mut old: serde_json::Value = serde_json::to_value(hooks.rules())?;
-    let mut damaged = old.clone();
+    let damaged = old.clone();
     old.as_object_mut().expect("a map").remove("endings");
     let _: CollisionRuleSet = serde_json::from_value(old)?;
     // A damaged end is refused, naming the entry: a negative margin, an end
@@ -219,37 +219,47 @@ fn rules_with_an_end_are_saved_with_what_is_left_and_end_after_loading_as_they_w
     let clock = damaged["ends_clock"]["steps"]
         .as_u64()
         .expect("a count of steps");
-    for (endings, why) in [
-        (end(apart(-1.0), 0, true), "a negative margin"),
-        (end(apart(0.0), clock + 1, true), "given after the clock"),
-        (end(apart(0.0), 0, false), "an end at apart not come"),
-    ] {
-        let mut damaged = damaged.clone();
-        damaged["endings"] = endings;
-        let error = serde_json::from_value::<CollisionRuleSet>(damaged)
-            .err()
-            .map(|e| e.to_string());
-        assert!(
-            error
-                .as_deref()
-                .is_some_and(|e| e.contains("saved end of the entry")),
-            "{why}: {error:?}"
-        );
-    }
     // The same end, undamaged, loads.
     let mut sound = damaged.clone();
     sound["endings"] = end(apart(0.0), clock, true);
     let _: CollisionRuleSet = serde_json::from_value(sound)?;
-    damaged["ends_clock"]["time"] = serde_json::json!(-1.0);
-    let error = serde_json::from_value::<CollisionRuleSet>(damaged)
-        .err()
-        .map(|e| e.to_string());
-    assert!(
-        error
-            .as_deref()
-            .is_some_and(|e| e.contains("saved clock of the ends")),
-        "{error:?}"
-    );
+    let mut bad_clock = damaged.clone();
+    bad_clock["ends_clock"]["time"] = serde_json::json!(-1.0);
+    let with_ends = |endings| {
+        let mut damaged = damaged.clone();
+        damaged["endings"] = endings;
+        damaged
+    };
+    for (damaged, why, says) in [
+        (
+            with_ends(end(apart(-1.0), 0, true)),
+            "a negative margin",
+            "saved end of the entry",
+        ),
+        (
+            with_ends(end(apart(0.0), clock + 1, true)),
+            "given after the clock",
+            "saved end of the entry",
+        ),
+        (
+            with_ends(end(apart(0.0), 0, false)),
+            "an end at apart not come",
+            "saved end of the entry",
+        ),
+        (
+            bad_clock,
+            "a clock with a negative time",
+            "saved clock of the ends",
+        ),
+    ] {
+        let error = serde_json::from_value::<CollisionRuleSet>(damaged)
+            .err()
+            .map(|e| e.to_string());
+        assert!(
+            error.as_deref().is_some_and(|e| e.contains(says)),
+            "{why}: {error:?}"
+        );
+    }
     Ok(())
 }
 

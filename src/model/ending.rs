@@ -257,14 +257,38 @@ pub(crate) fn seconds_come(left: f64, dt: Real) -> bool {
 pub(crate) const HALF_STEP_SLACK: f64 = 1e-3;
 
 /// Steps counted and the simulated time they took. `f64`: a day at 60 Hz
-/// sums without losing the half step a time rounds by. Saved as it is, so
-/// that a loaded set counts on from the same bits.
+/// sums without losing the half step a time rounds by. Saved as it is, the
+/// time as its bits (`time_bits`): a text format may read a decimal back
+/// one bit off (`serde_json` without its `float_roundtrip` feature does,
+/// for about one time in nine), and a loaded set counts on from the same
+/// bits.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Clock {
     pub(crate) steps: u64,
+    #[cfg_attr(feature = "serde", serde(rename = "time_bits", with = "bits"))]
     pub(crate) time: f64,
 }
+
+/// An `f64` saved as its bits.
+#[cfg(feature = "serde")]
+mod bits {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub(super) fn serialize<S: Serializer>(time: &f64, to: S) -> Result<S::Ok, S::Error> {
+        to.serialize_u64(time.to_bits())
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(from: D) -> Result<f64, D::Error> {
+        u64::deserialize(from).map(f64::from_bits)
+    }
+}
+
+/// More steps than any run counts (millions of years at a thousand steps
+/// a second): a saved clock or end past it is refused, so that counting
+/// on from it cannot overflow.
+#[cfg(feature = "serde")]
+pub(crate) const MOST_STEPS: u64 = 1 << 53;
 
 impl Clock {
     /// Counts a step of `dt`.
@@ -382,23 +406,30 @@ impl CollisionRuleSet {
     /// timeless or there is none. Counts down as the hooks step.
     #[must_use]
     pub fn specific_until(&self, node: impl Into<Node>, other: impl Into<Node>) -> Option<Until> {
-        let (node, other) = (node.into(), other.into());
+        let key = self.end_key(node.into(), other.into())?;
+        self.endings.get(&key)
+    }
+
+    /// Where the end of what `node` says about `other` is kept: under the
+    /// entry, or under the node sharing `node`'s record it was given
+    /// through; `None` if the entry is timeless or there is none.
+    pub(super) fn end_key(&self, node: Node, other: Node) -> Option<(Node, Node)> {
         if self.specific(node, other) == CollisionRule::Defer {
             return None;
         }
-        self.endings.get(&(node, other)).or_else(|| {
-            // The entry may have been given its end through a node that
-            // shares `node`'s record. A record with one user keeps its
-            // ends under it (see `endings_leave`): nothing to look for.
-            let record = self.record_id(node)?;
-            if self.records.get(record).users < 2 {
-                return None;
-            }
-            self.endings
-                .iter()
-                .find(|((n, o), _)| *o == other && self.record_id(*n) == Some(record))
-                .map(|(_, until)| until)
-        })
+        if self.endings.contains_key(&(node, other)) {
+            return Some((node, other));
+        }
+        // A record with one user keeps its ends under it (see
+        // `endings_leave`): nothing to look for.
+        let record = self.record_id(node)?;
+        if self.records.get(record).users < 2 {
+            return None;
+        }
+        self.endings
+            .iter()
+            .find(|((n, o), _)| *o == other && self.record_id(*n) == Some(record))
+            .map(|(key, _)| key)
     }
 
     /// Forgets the end of the entry of `node`'s record about `other`, given

@@ -12,6 +12,8 @@ use std::collections::{BTreeMap, BTreeSet, BinaryHeap};
 
 use super::super::Node;
 use super::super::rapier::prelude::Real;
+#[cfg(feature = "serde")]
+use super::ending::MOST_STEPS;
 use super::ending::{Clock, Count, DueEnd, Until, seconds_come};
 
 /// The fewest ends a sweep waits for: ends whose entry went another way
@@ -53,17 +55,25 @@ pub(crate) struct SavedEnd {
 impl SavedEnd {
     /// What the constructors and the clock let through: a valid `until`
     /// (see [`Until::is_valid`]), come if it counts to apart, given at a
-    /// reading of `clock` at or before `clock`'s own.
+    /// reading of `clock` at or before `clock`'s own (see
+    /// [`clock_is_valid`]).
     pub(crate) fn is_valid(&self, clock: Clock) -> bool {
         // An end at apart comes when given.
         let came_if_apart = self.came || !matches!(self.until.count, Count::Apart);
         self.until.is_valid()
             && came_if_apart
+            && clock_is_valid(self.given)
             && self.given.steps <= clock.steps
-            && self.given.time.is_finite()
-            && self.given.time >= 0.0
             && self.given.time <= clock.time
     }
+}
+
+/// What counting lets a clock reach: steps short of [`MOST_STEPS`], and a
+/// finite time of zero or more (not `-0.0`, whose bits would list an end
+/// after every other).
+#[cfg(feature = "serde")]
+pub(crate) fn clock_is_valid(clock: Clock) -> bool {
+    clock.steps < MOST_STEPS && clock.time.is_finite() && clock.time.is_sign_positive()
 }
 
 /// A place in a list of ends by when they come: the step (or the time's
@@ -135,35 +145,28 @@ impl Endings {
         };
         for (key, SavedEnd { until, given, came }) in saved {
             debug_assert!(SavedEnd { until, given, came }.is_valid(clock), "checked by the load");
-            endings.next_id += 1;
-            let end = End {
-                until,
-                given,
-                id: endings.next_id,
-                came,
-            };
-            if let Some(was) = endings.ends.insert(key, end)
-                && was.came
-            {
-                endings.came.remove(&key);
-            }
-            endings.list(key, end);
+            endings.put(key, until, given, came);
         }
         endings.kept = endings.ends.len();
-        endings.tidy_lists();
         endings
     }
 
     /// Gives `key`'s entry `until`, counted from now, in place of any end
     /// it had.
     pub(crate) fn insert(&mut self, key: (Node, Node), until: Until) {
+        // An end at apart comes at once.
+        self.put(key, until, self.clock, matches!(until.count, Count::Apart));
+    }
+
+    /// Gives `key`'s entry the end `until`, given at the reading `given`
+    /// of the clock, in place of any end it had, and lists it.
+    fn put(&mut self, key: (Node, Node), until: Until, given: Clock, came: bool) {
         self.next_id += 1;
         let end = End {
             until,
-            given: self.clock,
+            given,
             id: self.next_id,
-            // An end at apart comes at once.
-            came: matches!(until.count, Count::Apart),
+            came,
         };
         if let Some(was) = self.ends.insert(key, end)
             && was.came
@@ -203,6 +206,15 @@ impl Endings {
             self.came.remove(key);
         }
         Some(end.until.left(self.clock.since(end.given), end.came))
+    }
+
+    /// Gives `to` a copy of `from`'s end, in place of any end it had: the
+    /// same count from the same reading of the clock, which comes at the
+    /// step `from`'s does.
+    pub(crate) fn copy(&mut self, from: (Node, Node), to: (Node, Node)) {
+        if let Some(&End { until, given, came, .. }) = self.ends.get(&from) {
+            self.put(to, until, given, came);
+        }
     }
 
     /// Moves `from`'s end to `to`, unless `to` has one: the same end, which

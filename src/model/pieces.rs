@@ -91,11 +91,16 @@ impl CollisionRuleSet {
     }
 
     /// `set_specific`, with the end the entry `like` has, if any: a piece's
-    /// copy of a rule with an end ends on its own, when the piece is apart.
+    /// copy of a rule with an end ends on its own, when the piece is apart,
+    /// and its count comes at the step the source's does (a copy of the
+    /// end as given, not of what is left of it, which rounds a time).
     fn set_specific_keeping_end(&mut self, node: Node, other: Node, rule: CollisionRule, like: (Node, Node)) {
-        match self.specific_until(like.0, like.1) {
-            Some(until) => self.set_specific_until(node, other, rule, until),
-            None => self.set_specific(node, other, rule),
+        let end = self.end_key(like.0, like.1);
+        self.set_specific(node, other, rule);
+        if let Some(from) = end
+            && self.specific(node, other) != CollisionRule::Defer
+        {
+            self.endings.copy(from, (node, other));
         }
     }
 }
@@ -103,6 +108,8 @@ impl CollisionRuleSet {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use super::super::super::Until;
+    use super::super::super::rapier::prelude::Real;
 
     #[test]
     fn a_piece_takes_its_rules_past_a_newer_handle_of_its_slot() {
@@ -125,5 +132,51 @@ mod tests {
             assert_eq!(rules.parent(unborn), None, "linked: {linked}");
             assert!(!rules.is_removed(Node::Body(unborn)), "Rapier may hand out the unborn handle later");
         }
+    }
+
+    /// Found by a review: a piece's copy of an end was given again, from
+    /// what was left of it rounded to a `Real`, so a time a few of its last
+    /// bits from the edge of a step could end the piece's entry a step
+    /// apart from its source's. The copy is the end as given.
+    #[test]
+    fn a_piece_copy_of_an_end_comes_at_the_step_the_source_does() {
+        let body = |index| RigidBodyHandle::from_raw_parts(index, 0);
+        let (source, piece, floor) = (body(1), body(2), body(3));
+        let dt: Real = 1.0 / 60.0;
+        let mut checked = 0;
+        for n in 2..20u16 {
+            let edge = (f64::from(n) + 0.499) * f64::from(dt);
+            for bits in -12..=12 {
+                let seconds = f32::from_bits((edge as f32).to_bits().wrapping_add_signed(bits));
+                let until = Until::seconds(seconds).even_if_overlapping();
+                for split_at in 1..n {
+                    let mut rules = CollisionRuleSet::default();
+                    for _ in 0..7 {
+                        rules.count_ends(dt);
+                    }
+                    // The source's own entry, copied to a piece with a
+                    // record of its own; the floor's about the source, held
+                    // about the piece too.
+                    rules.set_specific_until(source, floor, CollisionRule::NoPair, until);
+                    rules.set_specific_until(floor, source, CollisionRule::NoResponse, until);
+                    let mut came = Vec::new();
+                    for step in 0..usize::from(n) + 3 {
+                        if step == usize::from(split_at) {
+                            assert!(rules.give_piece(source, piece, true, Heir::Piece));
+                        }
+                        let due: Vec<(Node, Node)> =
+                            rules.count_ends(dt).into_iter().map(|d| (d.node, d.other)).collect();
+                        came.push(due);
+                    }
+                    let first = |key: (Node, Node)| came.iter().position(|due| due.contains(&key));
+                    let (s, p, f) = (Node::Body(source), Node::Body(piece), Node::Body(floor));
+                    assert_eq!(first((p, f)), first((s, f)), "{seconds} s, split at step {split_at}");
+                    assert_eq!(first((f, p)), first((f, s)), "{seconds} s, split at step {split_at}");
+                    assert!(first((s, f)).is_some(), "{seconds} s came");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 3_000, "{checked} splits");
     }
 }

@@ -145,7 +145,7 @@ fn a_world_saved_with_its_rules_resolves_and_steps_as_before()
 
 /// The saved form of a rule set of every kind, as JSON.
 #[test]
-fn rules_with_an_end_are_saved_with_what_is_left_and_end_after_loading_as_they_would_have()
+fn rules_with_an_end_are_saved_and_end_after_loading_as_they_would_have()
 -> Result<(), Box<dyn std::error::Error>> {
     // A cube resting on the ground, given ten steps of falling through;
     // saved after four, loaded, and stepped beside the world not saved.
@@ -199,57 +199,80 @@ fn rules_with_an_end_are_saved_with_what_is_left_and_end_after_loading_as_they_w
         CollisionRule::Defer,
         "ten steps ran out"
     );
-    // A save made before ends existed has no `endings`: it loads with none.
+    // A save made before ends existed has no `endings` and no `ends_clock`:
+    // it loads with none.
     let mut old: serde_json::Value = serde_json::to_value(hooks.rules())?;
     let damaged = old.clone();
-    old.as_object_mut().expect("a map").remove("endings");
+    let map = old.as_object_mut().expect("a map");
+    map.remove("endings");
+    map.remove("ends_clock");
     let _: CollisionRuleSet = serde_json::from_value(old)?;
     // A damaged end is refused, naming the entry: a negative margin, an end
-    // given after the saved clock, an end at apart not come; and a clock
-    // with a negative time.
+    // given after the saved clock (in steps or in time), an end at apart
+    // not come; and a clock with a negative time or more steps than a run
+    // counts. Times are saved as their bits.
     let node = damaged["records"][0]["users"][0].clone();
-    let end = |until: serde_json::Value, given_steps: u64, came: bool| {
+    let clock = damaged["ends_clock"]["steps"]
+        .as_u64()
+        .expect("a count of steps");
+    let now = f64::from_bits(
+        damaged["ends_clock"]["time_bits"]
+            .as_u64()
+            .expect("a time's bits"),
+    );
+    let end = |until: serde_json::Value, steps: u64, time: f64, came: bool| {
         serde_json::json!([{
             "node": node, "other": node, "until": until,
-            "given": {"steps": given_steps, "time": 0.0}, "came": came,
+            "given": {"steps": steps, "time_bits": time.to_bits()}, "came": came,
         }])
     };
     let apart =
         |margin: f64| serde_json::json!({"count": "Apart", "margin": margin, "wait_apart": true});
-    let clock = damaged["ends_clock"]["steps"]
-        .as_u64()
-        .expect("a count of steps");
     // The same end, undamaged, loads.
     let mut sound = damaged.clone();
-    sound["endings"] = end(apart(0.0), clock, true);
+    sound["endings"] = end(apart(0.0), clock, now, true);
     let _: CollisionRuleSet = serde_json::from_value(sound)?;
-    let mut bad_clock = damaged.clone();
-    bad_clock["ends_clock"]["time"] = serde_json::json!(-1.0);
-    let with_ends = |endings| {
+    let with = |field: &str, value: serde_json::Value| {
         let mut damaged = damaged.clone();
-        damaged["endings"] = endings;
+        damaged[field] = value;
         damaged
     };
+    let mut far_clock = damaged["ends_clock"].clone();
+    far_clock["steps"] = serde_json::json!(u64::MAX);
+    let mut negative_clock = damaged["ends_clock"].clone();
+    negative_clock["time_bits"] = serde_json::json!((-1.0f64).to_bits());
+    let bad_end = "saved end of the entry";
+    let bad_clock = "saved clock of the ends";
     for (damaged, why, says) in [
         (
-            with_ends(end(apart(-1.0), 0, true)),
+            with("endings", end(apart(-1.0), 0, 0.0, true)),
             "a negative margin",
-            "saved end of the entry",
+            bad_end,
         ),
         (
-            with_ends(end(apart(0.0), clock + 1, true)),
-            "given after the clock",
-            "saved end of the entry",
+            with("endings", end(apart(0.0), clock + 1, now, true)),
+            "given a step after the clock",
+            bad_end,
         ),
         (
-            with_ends(end(apart(0.0), 0, false)),
+            with("endings", end(apart(0.0), clock, now + 1.0, true)),
+            "given a second after the clock",
+            bad_end,
+        ),
+        (
+            with("endings", end(apart(0.0), 0, 0.0, false)),
             "an end at apart not come",
-            "saved end of the entry",
+            bad_end,
         ),
         (
-            bad_clock,
+            with("ends_clock", negative_clock),
             "a clock with a negative time",
-            "saved clock of the ends",
+            bad_clock,
+        ),
+        (
+            with("ends_clock", far_clock),
+            "a clock past any run",
+            bad_clock,
         ),
     ] {
         let error = serde_json::from_value::<CollisionRuleSet>(damaged)

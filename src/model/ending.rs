@@ -37,6 +37,7 @@ use super::super::{CollisionRule, CollisionRuleSet, Node};
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Until {
     pub(super) count: Count,
     pub(super) margin: Real,
@@ -199,8 +200,9 @@ impl Until {
     }
 
     /// What the constructors and the count let through: a finite margin of
-    /// zero or more, a finite time left (the count may leave it a little
-    /// below zero). A save may hold anything.
+    /// zero or more, a finite time (below zero in what is left of a count
+    /// that came, which a project may give again). A save may hold
+    /// anything.
     #[cfg(feature = "serde")]
     pub(crate) fn is_valid(&self) -> bool {
         let time = match self.count {
@@ -213,8 +215,8 @@ impl Until {
     /// Whether the count has come before a step of `dt`, `counted` after
     /// the end was given. A time rounds to the nearest whole number of
     /// steps, and a time within [`HALF_STEP_SLACK`] of a step of a half
-    /// holds the step: the `f32` rounding of a time as given, saved or
-    /// stepped does not decide, for counts up to about 8,000 steps
+    /// holds the step: the `f32` rounding of a time as given or of the
+    /// steps does not decide, for counts up to about 8,000 steps
     /// (`docs/semantics.md`, "Rules with an end").
     pub(crate) fn comes(&self, counted: Clock, dt: Real) -> bool {
         match self.count {
@@ -264,6 +266,7 @@ pub(crate) const HALF_STEP_SLACK: f64 = 1e-3;
 /// bits.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub(crate) struct Clock {
     pub(crate) steps: u64,
     #[cfg_attr(feature = "serde", serde(rename = "time_bits", with = "bits"))]
@@ -284,9 +287,9 @@ mod bits {
     }
 }
 
-/// More steps than any run counts (millions of years at a thousand steps
-/// a second): a saved clock or end past it is refused, so that counting
-/// on from it cannot overflow.
+/// More steps than any run counts (about 285,000 years at a thousand
+/// steps a second): a saved clock or end at or past it is refused, so that
+/// counting on from it cannot overflow.
 #[cfg(feature = "serde")]
 pub(crate) const MOST_STEPS: u64 = 1 << 53;
 
@@ -580,8 +583,9 @@ mod tests {
         assert_eq!(held(10_985.5 / 60.0, 1.0 / 60.0), 10_985);
     }
 
-    /// What is left, given again as a new end (a save loaded, an end handed
-    /// to another node), comes at the step the end would have come.
+    /// What is left, given again as a new end (by a project that reads
+    /// `specific_until` and gives it to another entry), comes at the step
+    /// the end would have come.
     #[test]
     fn what_is_left_comes_when_the_end_would_have() {
         for hz in [30.0f32, 50.0, 60.0, 144.0] {

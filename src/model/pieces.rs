@@ -95,6 +95,9 @@ impl CollisionRuleSet {
     /// and its count comes at the step the source's does (a copy of the
     /// end as given, not of what is left of it, which rounds a time).
     fn set_specific_keeping_end(&mut self, node: Node, other: Node, rule: CollisionRule, like: (Node, Node)) {
+        // A piece's root is never its source's: `set_specific` would forget
+        // the end to copy.
+        debug_assert_ne!((node, other), like, "an entry copied onto itself");
         let end = self.end_key(like.0, like.1);
         self.set_specific(node, other, rule);
         if let Some(from) = end

@@ -45,13 +45,14 @@ pub enum LoadError {
         /// The body.
         child: RigidBodyHandle,
     },
-    /// The end of an entry with a negative or not-a-number margin or time
-    /// (`Until` refuses them when built), an end at apart that has not
-    /// come (it comes when given), or one given at a reading of the ends'
-    /// clock past the clock's own.
+    /// The end of an entry with a negative or not-a-number margin or a
+    /// time that is not finite (`Until` refuses them when built), an end
+    /// at apart that has not come (it comes when given), or one given at a
+    /// reading of the ends' clock that no count reaches or past the
+    /// clock's own.
     #[error(
-        "saved end of the entry of {node:?} about {other:?} has a negative or NaN margin or \
-         time, waits to count to apart, or was given after the saved clock"
+        "saved end of the entry of {node:?} about {other:?} has a negative or NaN margin or an \
+         infinite or NaN time, waits to count to apart, or was given after the saved clock"
     )]
     BadEnd {
         /// The node holding the entry.

@@ -209,8 +209,9 @@ fn rules_with_an_end_are_saved_and_end_after_loading_as_they_would_have()
     let _: CollisionRuleSet = serde_json::from_value(old)?;
     // A damaged end is refused, naming the entry: a negative margin, an end
     // given after the saved clock (in steps or in time), an end at apart
-    // not come; and a clock with a negative time or more steps than a run
-    // counts. Times are saved as their bits.
+    // not come, a time of -0.0 (whose bits sort after every other time); and
+    // a clock with a negative time or more steps than a run counts. Times
+    // are saved as their bits.
     let node = damaged["records"][0]["users"][0].clone();
     let clock = damaged["ends_clock"]["steps"]
         .as_u64()
@@ -239,8 +240,11 @@ fn rules_with_an_end_are_saved_and_end_after_loading_as_they_would_have()
     };
     let mut far_clock = damaged["ends_clock"].clone();
     far_clock["steps"] = serde_json::json!(u64::MAX);
-    let mut negative_clock = damaged["ends_clock"].clone();
-    negative_clock["time_bits"] = serde_json::json!((-1.0f64).to_bits());
+    let clock_at = |time: f64| {
+        let mut clock = damaged["ends_clock"].clone();
+        clock["time_bits"] = serde_json::json!(time.to_bits());
+        clock
+    };
     let bad_end = "saved end of the entry";
     let bad_clock = "saved clock of the ends";
     for (damaged, why, says) in [
@@ -265,8 +269,18 @@ fn rules_with_an_end_are_saved_and_end_after_loading_as_they_would_have()
             bad_end,
         ),
         (
-            with("ends_clock", negative_clock),
+            with("endings", end(apart(0.0), 0, -0.0, true)),
+            "given at a time of -0.0",
+            bad_end,
+        ),
+        (
+            with("ends_clock", clock_at(-1.0)),
             "a clock with a negative time",
+            bad_clock,
+        ),
+        (
+            with("ends_clock", clock_at(-0.0)),
+            "a clock at -0.0",
             bad_clock,
         ),
         (

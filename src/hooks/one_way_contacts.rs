@@ -119,17 +119,20 @@ impl RuleHooks {
             // second: out of the surface when it is the first.
             let out = if side == 0 { *rigid.normal } else { -*rigid.normal };
             let known = out.length_squared() > 0.1;
-            let mut ok = known && out.dot(normal) >= one_way.max_angle().cos();
-            if one_way.kind() == OneWayKind::Godot {
-                // Godot lets through a body leaving along the normal.
-                ok &= arriving <= 0.0;
-            }
+            let facing = known && out.dot(normal) >= one_way.max_angle().cos();
+            // Godot lets through a body leaving along the normal.
+            let leaving = one_way.kind() == OneWayKind::Godot && arriving > 0.0;
+            let ok = facing && !leaving;
             let next = match standing(user_data, side) {
                 Standing::Unknown if ok => Standing::Allowed,
                 Standing::Unknown => {
                     clear = true;
-                    // A zero normal (touching at a point) tells nothing: wait.
-                    if known { Standing::Forbidden } else { Standing::Unknown }
+                    // A zero normal (touching at a point) tells nothing,
+                    // and neither does a body leaving on the allowed side
+                    // (one that bounced on the top): wait. Barring the
+                    // latter let it fall through on its way back
+                    // (`docs/semantics.md`, "One-way surfaces").
+                    if known && !facing { Standing::Forbidden } else { Standing::Unknown }
                 }
                 Standing::Forbidden if ok && separated => Standing::Allowed,
                 Standing::Forbidden => {

@@ -480,3 +480,30 @@ fn a_surface_taken_away_leaves_no_standing_that_accuses_a_correct_run() {
     }
     assert!(runs > 100, "the surface was taken away in contact in {runs} runs");
 }
+
+#[test]
+fn a_fast_box_landing_on_a_one_way_platform_stays_on_it_in_both_semantics() {
+    // Dropped fast onto the top, the box is pushed back up as it lands, and
+    // touches the top again moving up: Godot's semantics once barred that
+    // contact, and the box fell through the platform on its way back down.
+    for kind in [OneWayKind::Rapier, OneWayKind::Godot] {
+        for vy in [-20.0, -150.0, -200.0, -300.0] {
+            let mut scene = Scene::new();
+            let (body, _) = platform(&mut scene, 0.0, 0.1);
+            let dropped = thrown(&mut scene, 0.0, 5.0, vy);
+            scene.world.bodies[dropped].enable_ccd(true);
+            let mut hooks = RuleHooks::default();
+            hooks.rules_mut().set_one_way(body, Some(OneWay::new(at(0.0, 1.0)).with_kind(kind)));
+            let mut lowest = f32::MAX;
+            for _ in 0..120 {
+                hooks.step(&mut scene.world);
+                lowest = lowest.min(scene.y(dropped));
+            }
+            let y = scene.y(dropped);
+            assert!(
+                (y - 3.4).abs() < 0.02 && lowest > 3.0,
+                "{kind:?}, dropped at {vy} m/s: the box rests on the platform: y = {y}, lowest {lowest}"
+            );
+        }
+    }
+}

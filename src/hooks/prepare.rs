@@ -8,6 +8,7 @@ use hashbrown::HashSet;
 use super::super::rapier::prelude::*;
 
 use super::step::missing;
+use super::roster::Look;
 use super::super::world::Mark;
 use super::{PairKey, PlanCause, RecalculationPolicy, RuleHooks, WorldRef};
 use super::super::planner::{self, personal::first_personal, room::Room};
@@ -274,7 +275,7 @@ impl RuleHooks {
         let left = look.removed_colliders.iter().map(|&(c, _)| c).chain(look.released.iter().copied());
         let left_hooked = self.planned.carrying_hook(left);
         self.planned.hooked = self.planned.hooked.saturating_sub(left_hooked);
-        let ended = self.forget_removed(bodies, &look.removed_colliders, &look.removed_bodies);
+        let ended = self.forget_removed(bodies, &look);
         changed.nodes.extend(ended);
         for &c in &look.released {
             if self.planned.plan.forget(c) {
@@ -545,9 +546,9 @@ impl RuleHooks {
     fn forget_removed(
         &mut self,
         bodies: &RigidBodySet,
-        removed: &[(ColliderHandle, Option<RigidBodyHandle>)],
-        removed_bodies: &[RigidBodyHandle],
+        look: &Look,
     ) -> Vec<Node> {
+        let (removed, removed_bodies) = (&look.removed_colliders, &look.removed_bodies);
         let mut gone: Vec<Node> = Vec::new();
         // The bodies of removed colliders that went with them, and the
         // watched bodies removed: a watched body is often both, and is
@@ -572,7 +573,7 @@ impl RuleHooks {
         gone.extend(gone_bodies.into_iter().map(Node::Body));
         // Together: whether each is dead to the rule set does not depend on
         // the order Rapier removed them in.
-        self.decide.rules.remove_nodes(&gone);
+        self.decide.rules.remove_nodes(&gone, &look.never_seen);
         self.stats.removed_objects = removed.len() + removed_bodies.len();
         // A removed object's entries end, and what their decisions said of
         // the colliders on their other side.

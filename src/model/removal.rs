@@ -35,7 +35,7 @@ impl CollisionRuleSet {
     /// # Ok::<(), RuleError>(())
     /// ```
     pub fn remove_node(&mut self, node: impl Into<Node>) {
-        self.remove_nodes(&[node.into()]);
+        self.remove_nodes(&[node.into()], &[]);
     }
 
     /// Forgets nodes that left the world together (the objects Rapier
@@ -46,9 +46,16 @@ impl CollisionRuleSet {
     /// before any is forgotten: forgetting one can leave another unnamed (a
     /// collider's entry about the body removed with it, a parent link), and
     /// the order of the removals must not decide which handles are dead.
-    pub(crate) fn remove_nodes(&mut self, nodes: &[Node]) {
+    /// A node in `never_seen` is forgotten and not remembered: the hooks
+    /// never found it in the world they step (a handle of another world,
+    /// or one a world put in place has yet to hand out), and Rapier may
+    /// hand it out later.
+    pub(crate) fn remove_nodes(&mut self, nodes: &[Node], never_seen: &[Node]) {
         // A step's removals: a few dozen, kept off the heap.
-        let held: SmallVec<[bool; 64]> = nodes.iter().map(|&node| self.holds_rules_about(node)).collect();
+        let held: SmallVec<[bool; 64]> = nodes
+            .iter()
+            .map(|&node| self.holds_rules_about(node) && !never_seen.contains(&node))
+            .collect();
         for &node in nodes {
             self.forget_node(node);
         }
@@ -123,7 +130,7 @@ impl CollisionRuleSet {
             Node::Body(h) => (1, h.into_raw_parts()),
         });
         missing.dedup();
-        self.remove_nodes(&missing);
+        self.remove_nodes(&missing, &[]);
         missing.len()
     }
 
@@ -209,7 +216,7 @@ mod tests {
             let mut rules = CollisionRuleSet::default();
             rules.set_specific(c2, b1, CollisionRule::NoPair);
             rules.set_parent(child, parent).expect("two live bodies");
-            rules.remove_nodes(&order);
+            rules.remove_nodes(&order, &[]);
             for body in [b1, child, parent] {
                 assert_eq!(
                     rules.set_parent(body, spare),

@@ -321,7 +321,9 @@ impl RuleHooks {
                 },
                 // Rapier dropped the pair because its rule is now `NoPair`
                 // (written into its groups): as for a pair the hook decides.
-                (Some((from, was)), None) if self.dropped_by_rule(&recording, key, world) => {
+                (Some((from, was)), None)
+                    if self.dropped_by_rule(&recording, key, was != key.kinds(world.bodies, world.colliders), world) =>
+                {
                     RuleEvent::RuleChanged {
                         collider1,
                         collider2,
@@ -366,11 +368,14 @@ impl RuleHooks {
     }
 
     /// Whether a live pair Rapier no longer holds was dropped for its rule:
-    /// both colliders are there, something changed the rules in this step,
-    /// and the pair's rule is `NoPair` now.
-    fn dropped_by_rule(&self, recording: &Recording, key: PairKey, world: WorldRef<'_>) -> bool {
+    /// both colliders are there, something changed the rules in this step
+    /// or a body of the pair changed type (`retyped`: Rapier's own
+    /// collision types drop a pair of two bodies that are not dynamic, as
+    /// the hook answers `NoPair` for it), and the pair's rule is `NoPair` now.
+    fn dropped_by_rule(&self, recording: &Recording, key: PairKey, retyped: bool, world: WorldRef<'_>) -> bool {
         let (a, b) = key.colliders();
-        let changed = recording.edited
+        let changed = retyped
+            || recording.edited
             || recording.forced
             || !recording.overridden.is_empty()
             || !recording.expired.is_empty()

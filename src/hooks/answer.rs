@@ -480,6 +480,9 @@ impl PhysicsHooks for RuleHooks {
         } else {
             SolverFlags::default()
         };
+        if self.soft_one_way_bars(context) {
+            return None;
+        }
         match self.user_for(context.colliders, a, b, ActiveHooks::FILTER_CONTACT_PAIRS) {
             // The project's hooks may only restrict.
             Some(user) => user

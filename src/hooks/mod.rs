@@ -185,6 +185,8 @@ pub struct RuleHooks {
     /// which Rapier cannot keep in their `user_data` (see
     /// `one_way_contacts.rs`).
     one_way_parts: Mutex<one_way_contacts::PartStandings>,
+    /// The one-way standings of pairs with a soft body.
+    soft_one_ways: Mutex<one_way_contacts::SoftStandings>,
 }
 
 /// What decides each pair: the rules, the policy, the code a project
@@ -456,6 +458,7 @@ impl RuleHooks {
             pair_ends: HashMap::new(),
             recording: None,
             one_way_parts: Mutex::default(),
+            soft_one_ways: Mutex::default(),
         }
     }
 

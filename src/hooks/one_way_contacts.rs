@@ -11,7 +11,7 @@ use std::sync::PoisonError;
 use hashbrown::HashMap;
 
 use super::super::OneWayKind;
-use super::super::model::body_of;
+use super::super::model::{body_of, soft_surface};
 use super::super::world::made_of_parts;
 use super::{PairKey, RuleHooks};
 
@@ -21,6 +21,14 @@ use super::{PairKey, RuleHooks};
 /// cluster fresh data every step, `user_data` included, so a standing kept
 /// there would be lost (`docs/semantics.md`, "One-way surfaces").
 pub(super) type PartStandings = HashMap<(PairKey, u32, u32), u32>;
+
+/// Whether a one-way surface bars each pair of a soft body and a surface
+/// (`true`) or lets it through, since the pair was first filtered. Rapier's
+/// soft-body solver builds its contacts from the manifold's points, not
+/// from the solver contacts `modify_solver_contacts` can drop, so a pair
+/// with a soft body is barred in `filter_contact_pair` instead
+/// (`docs/semantics.md`, "One-way surfaces").
+pub(super) type SoftStandings = HashMap<PairKey, bool>;
 
 /// Where a manifold stands with one surface, kept in two bits of the
 /// manifold's `user_data` (the top two for the pair's second collider as
@@ -165,6 +173,44 @@ impl RuleHooks {
     }
 }
 
+impl RuleHooks {
+    /// Whether a one-way surface bars a pair with a soft body. The soft
+    /// body's place decides, as a query's does (`query_predicate`): a pair
+    /// first filtered while one side is not wholly on the other's blocking
+    /// side is barred until it is; a pair first filtered with both wholly
+    /// there keeps its contacts until Rapier drops it.
+    pub(super) fn soft_one_way_bars(&self, context: &PairFilterContext<'_>) -> bool {
+        let rules = &self.decide.rules;
+        if !rules.uses_one_ways() {
+            return false;
+        }
+        let (bodies, colliders) = (context.bodies, context.colliders);
+        let (a, b) = (context.collider1, context.collider2);
+        if !soft_surface(colliders, a) && !soft_surface(colliders, b) {
+            return false;
+        }
+        // Whether `surface` lets `other` through: it is a one-way surface
+        // and `other` is not wholly on its blocking side.
+        let through = |surface: ColliderHandle, other: ColliderHandle| {
+            colliders
+                .get(surface)
+                .is_some_and(|collider| rules.one_way_lets_query_through(bodies, colliders, other, surface, collider))
+        };
+        if rules.one_way_of(bodies, colliders, a).is_none() && rules.one_way_of(bodies, colliders, b).is_none() {
+            return false;
+        }
+        self.answering();
+        let key = PairKey::new(a, b);
+        let mut kept = self.soft_one_ways.lock().unwrap_or_else(PoisonError::into_inner);
+        let barred = match kept.get(&key) {
+            Some(false) => false,
+            None | Some(true) => through(a, b) || through(b, a),
+        };
+        kept.insert(key, barred);
+        barred
+    }
+}
+
 /// Whether a manifold's `user_data` holds a forbidden standing for either
 /// side: the hook drops that manifold's solver contacts at every update
 /// (a side that is no surface has its standing cleared at each update).
@@ -177,6 +223,15 @@ impl RuleHooks {
     /// step: a pair that ended, or parts no longer within reach.
     pub(super) fn forget_part_standings(&mut self, narrow_phase: &NarrowPhase, colliders: &ColliderSet) {
         let uses = self.decide.rules.uses_one_ways();
+        let soft = self.soft_one_ways.get_mut().unwrap_or_else(PoisonError::into_inner);
+        if !uses {
+            soft.clear();
+        }
+        // A pair with a soft body is decided again once Rapier drops it.
+        soft.retain(|&key, _| {
+            let (a, b) = key.colliders();
+            colliders.contains(a) && colliders.contains(b) && narrow_phase.contact_pair(a, b).is_some()
+        });
         let kept = self.one_way_parts.get_mut().unwrap_or_else(PoisonError::into_inner);
         if kept.is_empty() {
             return;

@@ -246,10 +246,15 @@ impl RuleHooks {
         if soft_mesh {
             self.soft.mesh_planned();
         }
-        let modifying = self.planned.modifying.contains(&handle)
-            || (entry.hooked() && soft_mesh)
-            || self.decide.rules.one_way_of(bodies, colliders, handle).is_some();
-        let target = entry.combined(own, modifying);
+        let one_way = self.decide.rules.one_way_of(bodies, colliders, handle).is_some();
+        let modifying = self.planned.modifying.contains(&handle) || (entry.hooked() && soft_mesh) || one_way;
+        let mut target = entry.combined(own, modifying);
+        // A soft body's pairs with a one-way surface are barred in the
+        // filter: the soft-body solver reads no solver contacts
+        // (`docs/semantics.md`, "One-way surfaces").
+        if one_way && self.soft.present {
+            target.hooks |= ActiveHooks::FILTER_CONTACT_PAIRS;
+        }
         // The project changed a setting through Rapier: its pairs may have
         // ended (Rapier's own filters stop them), looked up after the step.
         if self.planned.written.get(handle).is_some_and(|w| w.own != own) {

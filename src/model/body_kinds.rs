@@ -41,13 +41,18 @@ pub(crate) fn is_dynamic(bodies: &RigidBodySet, colliders: &ColliderSet, node: N
     dynamic_body(bodies, body)
 }
 
+/// Whether `collider` is a soft body's surface.
+#[inline]
+pub(crate) fn soft_surface(colliders: &ColliderSet, collider: ColliderHandle) -> bool {
+    colliders.get(collider).is_some_and(|c| c.deformable_mesh_ref().is_some())
+}
+
 /// Whether one collider of the pair is a soft body's surface and the other
 /// is not: Rapier 0.36.1 solves every contact of such a pair, so one without
 /// response has none (`docs/semantics.md`, "Soft bodies").
 #[inline]
 pub(crate) fn soft_rigid(colliders: &ColliderSet, a: ColliderHandle, b: ColliderHandle) -> bool {
-    let soft = |c: ColliderHandle| colliders.get(c).is_some_and(|c| c.deformable_mesh_ref().is_some());
-    soft(a) != soft(b)
+    soft_surface(colliders, a) != soft_surface(colliders, b)
 }
 
 /// Whether each body of a pair of colliders is dynamic, in the pair's

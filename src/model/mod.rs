@@ -63,7 +63,7 @@ pub use rule_set::CollisionRuleSet;
 #[cfg(feature = "serde")]
 pub use snapshot::{LoadError, SavedRuleSet};
 pub(crate) use ending::{Countdown, Due, DueEnd};
-pub(crate) use body_kinds::{BodyKinds, body_of, dynamic_body, is_dynamic, soft_rigid};
+pub(crate) use body_kinds::{BodyKinds, body_of, dynamic_body, is_dynamic, soft_rigid, soft_surface};
 pub(crate) use pieces::Heir;
 pub(crate) use node::{Handle, HandleMap};
 pub(crate) use node_map::NodeMap;

@@ -77,7 +77,7 @@ impl CollisionRuleSet {
     /// it stands; for a surface of parts, its top under the source) by more than [`ONE_WAY_QUERY_SLACK`] (1 cm). A character
     /// controller given the predicate then walks or jumps through from
     /// below and stands on top, as a body does in a step.
-    fn one_way_lets_query_through(
+    pub(crate) fn one_way_lets_query_through(
         &self,
         bodies: &RigidBodySet,
         colliders: &ColliderSet,

@@ -228,7 +228,9 @@ impl RuleHooks {
     /// pair Rapier holds now can be given a rule: a pair Rapier decided
     /// alone is hooked from the next step on. Returns `false`, changing
     /// nothing, if `a` and `b` form no live pair (see
-    /// [`pair_rule`](Self::pair_rule)).
+    /// [`pair_rule`](Self::pair_rule)). A pair given `NoPair` is no longer
+    /// live, so a later `Defer` here finds nothing to drop: `force_recalculation`
+    /// of either side's node drops that override.
     ///
     /// ```
     /// use rapier3d::prelude::*;

@@ -34,9 +34,11 @@ pub enum Reach {
     /// No rule reaches it: Rapier decides its pairs alone, with the
     /// project's own settings.
     Unreached,
-    /// The rules reach it and the planner gave it Rapier collision groups,
-    /// solver groups or collision types: Rapier decides its pairs, with its
-    /// contact recycling.
+    /// The rules reach it and the planner planned it: it carries the
+    /// Rapier collision groups, solver groups or collision types its rules
+    /// need (Rapier's defaults where they need none, as for a collider
+    /// reached only through the parent map), and Rapier decides its pairs,
+    /// with its contact recycling.
     Planned,
     /// It carries a hook flag the crate gave it: the hook answers its
     /// pairs (a rule the hook decides), or modifies their contacts (a

@@ -306,6 +306,12 @@ struct Queued {
     /// pairs are looked up in Rapier's graph (a pair Rapier made without
     /// asking the hook gets its rule; one it dropped is forgotten).
     touched: Vec<ColliderHandle>,
+    /// The objects removed before this step are forgotten without being
+    /// remembered as removed: the step reads the whole rule set (the
+    /// first, as after `world_replaced`) or the edit log gave up, so no
+    /// edit names the nodes given rules since the last step (see
+    /// `Look::spared`).
+    spare_removed: bool,
 }
 
 impl Planned {
@@ -440,6 +446,7 @@ impl RuleHooks {
                 regrouped: HashSet::new(),
                 touched: Vec::new(),
                 unmarked: Vec::new(),
+                spare_removed: false,
             },
             planned: Planned {
                 enabled: true,

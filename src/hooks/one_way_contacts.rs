@@ -181,7 +181,7 @@ impl RuleHooks {
     /// there keeps its contacts until Rapier drops it.
     pub(super) fn soft_one_way_bars(&self, context: &PairFilterContext<'_>) -> bool {
         let rules = &self.decide.rules;
-        if !rules.uses_one_ways() {
+        if !self.soft.present || !rules.uses_one_ways() {
             return false;
         }
         let (bodies, colliders) = (context.bodies, context.colliders);

@@ -199,6 +199,11 @@ impl RuleHooks {
             self.decide.rules.mark_all_changed();
         }
         let changes = self.decide.rules.take_changes();
+        // The nodes the edits touched, marked for the look (where all the
+        // ruled nodes are watched, those are not marked: the whole plan is
+        // made again, which asks of each whether the rules still reach it).
+        let mut edited = None;
+        self.queued.spare_removed = false;
         let nodes = match self.decide.rules.touched_nodes(&changes) {
             Some(nodes) if !self.planned.exhaustive && self.boundary.step > 1 => nodes,
             // The first step reads the whole rule set: it may have been
@@ -212,13 +217,21 @@ impl RuleHooks {
                     PlanCause::FirstStep
                 };
                 self.queued.replan.get_or_insert(cause);
+                // What the first step reads, or a log that gave up, names
+                // no edit: every removal of this step is spared.
+                self.queued.spare_removed = touched.is_none() || self.boundary.step <= 1;
+                let touched = touched.unwrap_or_default();
                 let mut nodes = self.decide.rules.ruled_nodes();
-                nodes.extend(touched.into_iter().flatten());
+                nodes.extend(touched.iter().copied());
+                edited = Some(touched);
                 nodes
             }
         };
         for &node in nodes.iter().chain(changes.subjects()) {
-            self.watch(bodies, colliders, node);
+            self.watch(bodies, colliders, node, edited.is_none());
+        }
+        for &node in edited.iter().flatten().chain(changes.subjects()) {
+            self.mark_edited(bodies, colliders, node);
         }
         let mut nodes = nodes;
         nodes.extend(self.personal_subjects(changes.subjects(), bodies, colliders));
@@ -504,7 +517,7 @@ impl RuleHooks {
     }
 
     /// Starts watching `node` and every collider under it.
-    fn watch(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) {
+    fn watch(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, node: Node, edited: bool) {
         match node {
             Node::Body(body) => {
                 self.planned.roster.watch_body(bodies, body);
@@ -512,9 +525,22 @@ impl RuleHooks {
             // Watched even if Rapier removed it: the look then forgets it.
             Node::Collider(c) => self.watch_collider(bodies, colliders, c),
         }
-        self.planned.roster.mark(node);
+        if edited {
+            self.planned.roster.mark(node);
+        }
         for c in self.colliders_under(node, bodies, colliders) {
             self.watch_collider(bodies, colliders, c);
+            if edited {
+                self.planned.roster.mark(Node::Collider(c));
+            }
+        }
+    }
+
+    /// Marks a watched `node` and the colliders under it as touched by an
+    /// edit since the last step (see `Roster::mark`).
+    fn mark_edited(&mut self, bodies: &RigidBodySet, colliders: &ColliderSet, node: Node) {
+        self.planned.roster.mark(node);
+        for c in self.colliders_under(node, bodies, colliders) {
             self.planned.roster.mark(Node::Collider(c));
         }
     }
@@ -573,7 +599,8 @@ impl RuleHooks {
         gone.extend(gone_bodies.into_iter().map(Node::Body));
         // Together: whether each is dead to the rule set does not depend on
         // the order Rapier removed them in.
-        self.decide.rules.remove_nodes(&gone, &look.never_seen);
+        let spared = if self.queued.spare_removed { None } else { Some(&look.spared[..]) };
+        self.decide.rules.remove_nodes(&gone, spared);
         self.stats.removed_objects = removed.len() + removed_bodies.len();
         // A removed object's entries end, and what their decisions said of
         // the colliders on their other side.

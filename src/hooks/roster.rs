@@ -294,12 +294,14 @@ pub(crate) struct Look {
     /// Removed colliders, with the body each was on.
     pub(crate) removed_colliders: Vec<(ColliderHandle, Option<RigidBodyHandle>)>,
     pub(crate) removed_bodies: Vec<RigidBodyHandle>,
-    /// The removed handles the hooks never found in the world (watched as
+    /// The removed handles an edit touched since the hooks' last step
+    /// (marked), or that the hooks never found in the world (watched as
     /// [`Entry::Alone`]): a handle of another world, or of an object a
-    /// world put in place has yet to hand out. Their rules are forgotten,
-    /// the handles not remembered as removed (`docs/semantics.md`,
-    /// "Handles of removed objects").
-    pub(crate) never_seen: Vec<Node>,
+    /// world put in place has yet to hand out, among them. Their rules are
+    /// forgotten, the handles not remembered as removed, whatever the hooks
+    /// watched before the edit (`docs/semantics.md`, "Handles of removed
+    /// objects").
+    pub(crate) spared: Vec<Node>,
     /// Nodes whose chains changed: a collider moved to another body, a body
     /// whose type changed (its colliders' default group changed).
     pub(crate) changed: Vec<Node>,
@@ -488,10 +490,10 @@ impl Roster {
         self.bodies.retain(|handle, was| {
             // Gone from Rapier, or an older generation a newer body took the
             // slot of, or never in the world: removed.
-            let seen = was.is_some();
+            let edited = was.as_ref().is_none_or(|was| was.marked);
             let (Some(body), Some(was)) = (bodies.get(handle), was) else {
-                if !seen {
-                    look.never_seen.push(Node::Body(handle));
+                if edited {
+                    look.spared.push(Node::Body(handle));
                 }
                 look.removed_bodies.push(handle);
                 return false;
@@ -544,8 +546,8 @@ impl Roster {
             // the slot of (see `watch_collider`), or never in the world.
             let (Some(collider), Some(known)) = (colliders.get(handle), known.as_deref_mut())
             else {
-                if known.is_none() {
-                    look.never_seen.push(Node::Collider(handle));
+                if known.as_ref().is_none_or(|known| known.marked) {
+                    look.spared.push(Node::Collider(handle));
                 }
                 let body = known.and_then(|k| k.body);
                 recheck.extend(body);

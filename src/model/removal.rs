@@ -35,7 +35,7 @@ impl CollisionRuleSet {
     /// # Ok::<(), RuleError>(())
     /// ```
     pub fn remove_node(&mut self, node: impl Into<Node>) {
-        self.remove_nodes(&[node.into()], &[]);
+        self.remove_nodes(&[node.into()], Some(&[]));
     }
 
     /// Forgets nodes that left the world together (the objects Rapier
@@ -46,15 +46,19 @@ impl CollisionRuleSet {
     /// before any is forgotten: forgetting one can leave another unnamed (a
     /// collider's entry about the body removed with it, a parent link), and
     /// the order of the removals must not decide which handles are dead.
-    /// A node in `never_seen` is forgotten and not remembered: the hooks
-    /// never found it in the world they step (a handle of another world,
-    /// or one a world put in place has yet to hand out), and Rapier may
-    /// hand it out later.
-    pub(crate) fn remove_nodes(&mut self, nodes: &[Node], never_seen: &[Node]) {
-        // A step's removals: a few dozen, kept off the heap.
+    /// A node in `spared` (every node for `None`) is forgotten and not
+    /// remembered: an edit gave it rules since the hooks' last step, and
+    /// its handle may be one Rapier has yet to hand out (another world's,
+    /// or one a world put in place holds no object of yet); whether the
+    /// hooks watched it before the edit must not decide
+    /// (`docs/semantics.md`, "Handles of removed objects").
+    pub(crate) fn remove_nodes(&mut self, nodes: &[Node], spared: Option<&[Node]>) {
+        // A step's removals: a few dozen, kept off the heap. Those spared
+        // are few (removed the step they were edited), so a scan of them
+        // costs nothing where there are none.
         let held: SmallVec<[bool; 64]> = nodes
             .iter()
-            .map(|&node| self.holds_rules_about(node) && !never_seen.contains(&node))
+            .map(|&node| self.holds_rules_about(node) && spared.is_some_and(|spared| !spared.contains(&node)))
             .collect();
         for &node in nodes {
             self.forget_node(node);
@@ -130,7 +134,7 @@ impl CollisionRuleSet {
             Node::Body(h) => (1, h.into_raw_parts()),
         });
         missing.dedup();
-        self.remove_nodes(&missing, &[]);
+        self.remove_nodes(&missing, Some(&[]));
         missing.len()
     }
 
@@ -216,7 +220,7 @@ mod tests {
             let mut rules = CollisionRuleSet::default();
             rules.set_specific(c2, b1, CollisionRule::NoPair);
             rules.set_parent(child, parent).expect("two live bodies");
-            rules.remove_nodes(&order, &[]);
+            rules.remove_nodes(&order, Some(&[]));
             for body in [b1, child, parent] {
                 assert_eq!(
                     rules.set_parent(body, spare),

@@ -320,19 +320,22 @@ impl RuleHooks {
                     cause: self.cause(&recording, key, was != kinds, world),
                 },
                 // Rapier dropped the pair because its rule is now `NoPair`
-                // (written into its groups): as for a pair the hook decides.
-                (Some((from, was)), None)
-                    if self.dropped_by_rule(&recording, key, was != key.kinds(world.bodies, world.colliders), world) =>
-                {
-                    RuleEvent::RuleChanged {
-                        collider1,
-                        collider2,
-                        from,
-                        to: CollisionRule::NoPair,
-                        cause: self.cause(&recording, key, was != key.kinds(world.bodies, world.colliders), world),
+                // (written into its groups, or its body types): as for a
+                // pair the hook decides. Else the pair ended.
+                (Some((from, was)), None) => {
+                    let retyped = was != key.kinds(world.bodies, world.colliders);
+                    if self.dropped_by_rule(&recording, key, retyped, world) {
+                        RuleEvent::RuleChanged {
+                            collider1,
+                            collider2,
+                            from,
+                            to: CollisionRule::NoPair,
+                            cause: self.cause(&recording, key, retyped, world),
+                        }
+                    } else {
+                        RuleEvent::PairEnded { collider1, collider2, rule: from }
                     }
                 }
-                (Some((rule, _)), None) => RuleEvent::PairEnded { collider1, collider2, rule },
                 _ => return None,
             })
         };
